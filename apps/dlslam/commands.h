@@ -1,0 +1,16 @@
+#pragma once
+// The subcommands of the `dlslam` tool, one file each. Every Add*Command
+// registers a CLI11 subcommand whose callback does the work; errors are
+// thrown and turned into a message and a non-zero exit by main().
+
+#include <CLI/CLI.hpp>
+
+namespace dlslam::app {
+
+void AddDemoCommand(CLI::App& app);     // demo.cc: the bundled default run
+void AddEvalCommand(CLI::App& app);     // eval.cc: ATE / RPE as the TUM tools
+void AddSynthCommand(CLI::App& app);    // synth.cc: synthetic dynamic RGB-D sequences
+void AddDatasetCommand(CLI::App& app);  // dataset.cc: fetch TUM / Bonn sequences
+void AddInfoCommand(CLI::App& app);     // info.cc: what a sequence folder holds
+
+}  // namespace dlslam::app

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Builds and tests under a sanitizer in its own build folder.
+#   scripts/sanitize.sh address   # ASan + UBSan -> build-asan/
+#   scripts/sanitize.sh thread    # TSan         -> build-tsan/
+set -euo pipefail
+cd "$(dirname "$0")/.."
+kind="${1:?usage: scripts/sanitize.sh address|thread [ctest args]}"
+shift
+case "$kind" in
+  address) dir=build-asan ;;
+  thread) dir=build-tsan ;;
+  *) echo "unknown sanitizer '$kind' (address or thread)" >&2; exit 2 ;;
+esac
+cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDLSLAM_SANITIZE="$kind" \
+  -DDLSLAM_BUILD_BENCHMARKS=OFF
+cmake --build "$dir" --parallel "$(nproc)"
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
+ctest --test-dir "$dir" --output-on-failure --parallel "$(nproc)" "$@"

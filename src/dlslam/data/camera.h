@@ -1,0 +1,49 @@
+#pragma once
+// The RGB-D camera: pinhole intrinsics, Brown-Conrady distortion (k1 k2 p1 p2
+// k3, OpenCV's order) and the depth scale. Units: pixels and metres.
+
+#include <Eigen/Core>
+
+#include <string>
+
+namespace dlslam {
+
+struct CameraIntrinsics {
+  std::string name;  // e.g. "freiburg3", "bonn", "settings:my_cam.yaml"
+  int width = 640;   // image size [px]
+  int height = 480;
+  double fx = 525.0;  // focal lengths [px]
+  double fy = 525.0;
+  double cx = 319.5;  // principal point [px]
+  double cy = 239.5;
+  double k1 = 0.0, k2 = 0.0, p1 = 0.0, p2 = 0.0, k3 = 0.0;  // distortion (OpenCV order)
+  // Raw depth value per metre: 5000 for TUM and Bonn PNGs, 1000 for millimetres.
+  double depth_factor = 5000.0;
+  // Stereo baseline times fx [px * m] for the virtual right image of RGB-D
+  // tracking (ORB-SLAM's Camera.bf; 40 in its TUM settings).
+  double bf = 40.0;
+
+  bool HasDistortion() const { return k1 != 0 || k2 != 0 || p1 != 0 || p2 != 0 || k3 != 0; }
+
+  // Pixel of a point in the camera frame (z > 0), without distortion.
+  Eigen::Vector2d Project(const Eigen::Vector3d& p_cam) const {
+    return {fx * p_cam.x() / p_cam.z() + cx, fy * p_cam.y() / p_cam.z() + cy};
+  }
+  // Point in the camera frame seen at undistorted pixel uv with depth z [m].
+  Eigen::Vector3d Unproject(const Eigen::Vector2d& uv, double z) const {
+    return {(uv.x() - cx) / fx * z, (uv.y() - cy) / fy * z, z};
+  }
+  // Applies the distortion model to a normalised image point (x/z, y/z).
+  Eigen::Vector2d Distort(const Eigen::Vector2d& xn) const;
+
+  // Throws dlslam::Error naming the offending value.
+  void Check() const;
+};
+
+// Published intrinsics of the TUM RGB-D cameras (vision.in.tum.de, "Intrinsic
+// Camera Calibration of the Kinect"). freiburg3 images are already undistorted.
+// `name`: "freiburg1", "freiburg2", "freiburg3" (or "fr1".."fr3"), "bonn".
+// Throws dlslam::Error for an unknown name.
+CameraIntrinsics CameraPreset(const std::string& name);
+
+}  // namespace dlslam

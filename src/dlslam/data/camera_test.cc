@@ -1,0 +1,54 @@
+#include "dlslam/data/camera.h"
+
+#include <gtest/gtest.h>
+
+#include "dlslam/util/check.h"
+
+namespace dlslam {
+namespace {
+
+TEST(Camera, ProjectUnprojectRoundTrip) {
+  const CameraIntrinsics c = CameraPreset("freiburg3");
+  const Eigen::Vector3d p(0.3, -0.2, 2.1);
+  const Eigen::Vector2d uv = c.Project(p);
+  EXPECT_LT((c.Unproject(uv, p.z()) - p).norm(), 1e-12);
+}
+
+TEST(Camera, PresetsMatchPublishedTumValues) {
+  const CameraIntrinsics fr1 = CameraPreset("fr1");
+  EXPECT_EQ(fr1.name, "freiburg1");
+  EXPECT_DOUBLE_EQ(fr1.fx, 517.306408);
+  EXPECT_DOUBLE_EQ(fr1.k3, 1.163314);
+  EXPECT_DOUBLE_EQ(CameraPreset("freiburg2").cy, 249.701764);
+  const CameraIntrinsics fr3 = CameraPreset("freiburg3");
+  EXPECT_FALSE(fr3.HasDistortion());
+  EXPECT_DOUBLE_EQ(fr3.depth_factor, 5000.0);
+  EXPECT_NO_THROW(fr3.Check());
+}
+
+TEST(Camera, UnknownPresetIsAnError) { EXPECT_THROW(CameraPreset("freiburg9"), Error); }
+
+TEST(Camera, CheckRejectsNonsense) {
+  CameraIntrinsics c;
+  c.fx = -1;
+  EXPECT_THROW(c.Check(), Error);
+  c = CameraIntrinsics();
+  c.cx = 700;
+  EXPECT_THROW(c.Check(), Error);
+  c = CameraIntrinsics();
+  c.depth_factor = 0;
+  EXPECT_THROW(c.Check(), Error);
+}
+
+TEST(Camera, DistortionOfCentreIsIdentityAndMatchesFormula) {
+  const CameraIntrinsics c = CameraPreset("fr1");
+  EXPECT_EQ(c.Distort(Eigen::Vector2d::Zero()), Eigen::Vector2d::Zero());
+  const double x = 0.2, y = -0.1, r2 = x * x + y * y;
+  const double radial = 1 + c.k1 * r2 + c.k2 * r2 * r2 + c.k3 * r2 * r2 * r2;
+  const Eigen::Vector2d d = c.Distort({x, y});
+  EXPECT_NEAR(d.x(), x * radial + 2 * c.p1 * x * y + c.p2 * (r2 + 2 * x * x), 1e-15);
+  EXPECT_NEAR(d.y(), y * radial + c.p1 * (r2 + 2 * y * y) + 2 * c.p2 * x * y, 1e-15);
+}
+
+}  // namespace
+}  // namespace dlslam

@@ -1,0 +1,1 @@
+namespace dlslam {}  // replaced by the evaluation code
