@@ -1,0 +1,1 @@
+namespace dlslam {}  // replaced when this module is built
