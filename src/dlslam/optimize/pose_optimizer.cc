@@ -1,0 +1,156 @@
+#include "dlslam/optimize/pose_optimizer.h"
+
+#include <Eigen/Cholesky>
+
+#include <cmath>
+
+#include "dlslam/util/check.h"
+
+namespace dlslam {
+
+void PoseOptimizerOptions::Check() const {
+  DLSLAM_CHECK_GT(rounds, 0);
+  DLSLAM_CHECK_GT(iterations_per_round, 0);
+  DLSLAM_CHECK_GT(chi2_mono, 0.0);
+  DLSLAM_CHECK_GT(chi2_stereo, 0.0);
+  DLSLAM_CHECK_GE(min_step, 0.0);
+}
+
+namespace {
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using Linearization = ObservationLinearization;
+}  // namespace
+
+bool LinearizeObservation(const CameraIntrinsics& camera, const SE3d& cam_from_world,
+                          const PoseObservation& obs, bool with_jacobian, Linearization* out) {
+  const Eigen::Vector3d p = cam_from_world * obs.point_world;
+  if (p.z() <= 1e-6) return false;
+  const double inv_z = 1.0 / p.z();
+  const double u = camera.fx * p.x() * inv_z + camera.cx;
+  const double v = camera.fy * p.y() * inv_z + camera.cy;
+  out->rows = obs.right_u >= 0 ? 3 : 2;
+  out->residual.x() = obs.pixel.x() - u;
+  out->residual.y() = obs.pixel.y() - v;
+  out->residual.z() = out->rows == 3 ? obs.right_u - (u - camera.bf * inv_z) : 0.0;
+  if (!with_jacobian) return true;
+  const double inv_z2 = inv_z * inv_z;
+  Eigen::Matrix3d d_proj;  // d(u, v, u_right) / d(p_cam)
+  d_proj << camera.fx * inv_z, 0, -camera.fx * p.x() * inv_z2,  //
+      0, camera.fy * inv_z, -camera.fy * p.y() * inv_z2,        //
+      camera.fx * inv_z, 0, -camera.fx * p.x() * inv_z2 + camera.bf * inv_z2;
+  Eigen::Matrix<double, 3, 6> d_point;  // d(p_cam) / d(delta) = [I, -hat(p_cam)]
+  d_point << Eigen::Matrix3d::Identity(), -SO3d::Hat(p);
+  out->jacobian = -d_proj * d_point;
+  if (out->rows == 2) out->jacobian.row(2).setZero();
+  return true;
+}
+
+namespace {
+
+double Chi2(const Linearization& l, double information) {
+  return information * l.residual.head(l.rows).squaredNorm();
+}
+
+// Huber weight for IRLS on chi2 = e^T Omega e with threshold delta^2.
+double HuberWeight(double chi2, double delta_sq) {
+  return chi2 <= delta_sq ? 1.0 : std::sqrt(delta_sq / chi2);
+}
+
+double TotalCost(const CameraIntrinsics& camera, const SE3d& pose,
+                 const std::vector<PoseObservation>& observations, const std::vector<bool>& active,
+                 const PoseOptimizerOptions& options, bool robust) {
+  double cost = 0;
+  Linearization l;
+  for (std::size_t i = 0; i < observations.size(); ++i) {
+    if (!active[i]) continue;
+    if (!LinearizeObservation(camera, pose, observations[i], false, &l)) {
+      cost += 1e6;  // behind the camera: a heavy but finite penalty
+      continue;
+    }
+    const double chi2 = Chi2(l, observations[i].information);
+    const double delta_sq = l.rows == 3 ? options.chi2_stereo : options.chi2_mono;
+    // Huber cost (times 2): chi2 inside, 2 delta sqrt(chi2) - delta^2 outside.
+    cost += (!robust || chi2 <= delta_sq) ? chi2 : 2 * std::sqrt(delta_sq * chi2) - delta_sq;
+  }
+  return cost;
+}
+
+// Levenberg-Marquardt iterations over the active observations.
+SE3d RunIterations(const CameraIntrinsics& camera, SE3d pose, const std::vector<PoseObservation>& observations,
+                   const std::vector<bool>& active, const PoseOptimizerOptions& options, bool robust) {
+  double lambda = 1e-4;
+  double cost = TotalCost(camera, pose, observations, active, options, robust);
+  Linearization l;
+  for (int it = 0; it < options.iterations_per_round; ++it) {
+    Matrix6d H = Matrix6d::Zero();
+    Vector6d g = Vector6d::Zero();
+    for (std::size_t i = 0; i < observations.size(); ++i) {
+      if (!active[i] || !LinearizeObservation(camera, pose, observations[i], true, &l)) continue;
+      const double info = observations[i].information;
+      const double delta_sq = l.rows == 3 ? options.chi2_stereo : options.chi2_mono;
+      const double w = robust ? HuberWeight(Chi2(l, info), delta_sq) * info : info;
+      H.noalias() += w * l.jacobian.transpose() * l.jacobian;
+      g.noalias() += w * l.jacobian.transpose() * l.residual;
+    }
+    bool improved = false;
+    for (int attempt = 0; attempt < 10 && !improved; ++attempt) {
+      Matrix6d damped = H;
+      damped.diagonal() += lambda * H.diagonal().cwiseMax(1e-9);
+      const Vector6d step = damped.ldlt().solve(-g);
+      if (!step.allFinite()) break;
+      const SE3d candidate = SE3d::Exp(step) * pose;
+      const double new_cost = TotalCost(camera, candidate, observations, active, options, robust);
+      if (new_cost < cost) {
+        pose = candidate;
+        cost = new_cost;
+        lambda = std::max(lambda / 10, 1e-10);
+        improved = true;
+        if (step.norm() < options.min_step) return pose;
+      } else {
+        lambda *= 10;
+      }
+    }
+    if (!improved) break;
+  }
+  return pose;
+}
+
+}  // namespace
+
+PoseOptimizationResult OptimizePose(const CameraIntrinsics& camera, const SE3d& initial_cam_from_world,
+                                    const std::vector<PoseObservation>& observations,
+                                    const PoseOptimizerOptions& options) {
+  options.Check();
+  PoseOptimizationResult result;
+  result.cam_from_world = initial_cam_from_world;
+  result.inliers.assign(observations.size(), false);
+  if (observations.size() < 3) return result;
+
+  std::vector<bool> active(observations.size(), true);
+  Linearization l;
+  for (int round = 0; round < options.rounds; ++round) {
+    const bool robust = round + 1 < options.rounds || options.robust_last_round;
+    result.cam_from_world =
+        RunIterations(camera, result.cam_from_world, observations, active, options, robust);
+    // Classify every observation, outliers included: a point rejected under a
+    // bad early pose may fit the refined one.
+    result.num_inliers = 0;
+    result.final_chi2 = 0;
+    for (std::size_t i = 0; i < observations.size(); ++i) {
+      const bool ok = LinearizeObservation(camera, result.cam_from_world, observations[i], false, &l);
+      const double chi2 = ok ? Chi2(l, observations[i].information) : INFINITY;
+      const double limit = ok && l.rows == 3 ? options.chi2_stereo : options.chi2_mono;
+      active[i] = chi2 <= limit;
+      if (active[i]) {
+        ++result.num_inliers;
+        result.final_chi2 += chi2;
+      }
+    }
+    if (result.num_inliers < 3) break;
+  }
+  result.inliers = active;
+  return result;
+}
+
+}  // namespace dlslam
