@@ -1,0 +1,146 @@
+#include "dlslam/data/frame.h"
+
+#include <opencv2/calib3d.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "dlslam/util/check.h"
+
+namespace dlslam {
+
+double ScalePyramid::Scale(int level) const { return std::pow(scale_factor, level); }
+double ScalePyramid::InverseSigma2(int level) const {
+  const double s = Scale(level);
+  return 1.0 / (s * s);
+}
+void ScalePyramid::Check() const {
+  DLSLAM_CHECK_GT(levels, 0);
+  DLSLAM_CHECK_GT(scale_factor, 1.0);
+}
+
+namespace {
+
+// Undistorts keypoint pixels with the camera's distortion model.
+std::vector<Eigen::Vector2d> Undistort(const std::vector<cv::KeyPoint>& keypoints,
+                                       const CameraIntrinsics& camera) {
+  std::vector<Eigen::Vector2d> out(keypoints.size());
+  if (!camera.HasDistortion() || keypoints.empty()) {
+    for (std::size_t i = 0; i < keypoints.size(); ++i) out[i] = {keypoints[i].pt.x, keypoints[i].pt.y};
+    return out;
+  }
+  std::vector<cv::Point2f> in(keypoints.size()), undistorted;
+  for (std::size_t i = 0; i < keypoints.size(); ++i) in[i] = keypoints[i].pt;
+  const cv::Matx33d K(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
+  const cv::Vec<double, 5> dist(camera.k1, camera.k2, camera.p1, camera.p2, camera.k3);
+  cv::undistortPoints(in, undistorted, K, dist, cv::noArray(), K);
+  for (std::size_t i = 0; i < keypoints.size(); ++i) out[i] = {undistorted[i].x, undistorted[i].y};
+  return out;
+}
+
+}  // namespace
+
+Frame Frame::Create(double timestamp, const std::vector<cv::KeyPoint>& keypoints, cv::Mat descriptors,
+                    const cv::Mat& depth, const CameraIntrinsics& camera, const ScalePyramid& pyramid,
+                    double min_depth, double max_depth) {
+  camera.Check();
+  pyramid.Check();
+  DLSLAM_CHECK_EQ(descriptors.rows, static_cast<int>(keypoints.size()), "one descriptor per keypoint");
+  DLSLAM_CHECK(keypoints.empty() || descriptors.type() == CV_8UC1, "descriptors must be CV_8UC1");
+  DLSLAM_CHECK(depth.empty() || depth.type() == CV_32FC1, "depth must be CV_32FC1 metres");
+  Frame f;
+  f.timestamp_ = timestamp;
+  f.camera_ = camera;
+  f.pyramid_ = pyramid;
+  f.descriptors_ = std::move(descriptors);
+  const std::vector<Eigen::Vector2d> undistorted = Undistort(keypoints, camera);
+  f.keypoints_.resize(keypoints.size());
+  for (std::size_t i = 0; i < keypoints.size(); ++i) {
+    const cv::KeyPoint& k = keypoints[i];
+    FrameKeypoint& fk = f.keypoints_[i];
+    fk.uv = undistorted[i];
+    fk.raw_uv = {k.pt.x, k.pt.y};
+    fk.octave = std::clamp(k.octave, 0, pyramid.levels - 1);
+    fk.angle = k.angle;
+    fk.response = k.response;
+    const int x = static_cast<int>(std::lround(k.pt.x));
+    const int y = static_cast<int>(std::lround(k.pt.y));
+    if (!depth.empty() && x >= 0 && y >= 0 && x < depth.cols && y < depth.rows) {
+      const double z = depth.at<float>(y, x);
+      if (z > min_depth && z < max_depth) {
+        fk.depth = z;
+        fk.right_u = fk.uv.x() - camera.bf / z;
+      }
+    }
+  }
+  f.ignored_.assign(keypoints.size(), false);
+  f.BuildGrid();
+  return f;
+}
+
+void Frame::BuildGrid() {
+  // Bounds of the undistorted image: the corners move under distortion.
+  min_u_ = 0;
+  min_v_ = 0;
+  max_u_ = camera_.width;
+  max_v_ = camera_.height;
+  for (const FrameKeypoint& k : keypoints_) {
+    min_u_ = std::min(min_u_, k.uv.x());
+    max_u_ = std::max(max_u_, k.uv.x() + 1e-3);
+    min_v_ = std::min(min_v_, k.uv.y());
+    max_v_ = std::max(max_v_, k.uv.y() + 1e-3);
+  }
+  cell_w_inv_ = kGridCols / (max_u_ - min_u_);
+  cell_h_inv_ = kGridRows / (max_v_ - min_v_);
+  grid_.assign(kGridCols * kGridRows, {});
+  for (std::size_t i = 0; i < keypoints_.size(); ++i) {
+    const int cx = std::clamp(static_cast<int>((keypoints_[i].uv.x() - min_u_) * cell_w_inv_), 0, kGridCols - 1);
+    const int cy = std::clamp(static_cast<int>((keypoints_[i].uv.y() - min_v_) * cell_h_inv_), 0, kGridRows - 1);
+    grid_[cy * kGridCols + cx].push_back(static_cast<int>(i));
+  }
+}
+
+int Frame::IgnoreMasked(const cv::Mat& mask) {
+  DLSLAM_CHECK_EQ(mask.type(), CV_8UC1, "dynamic mask must be 8-bit single channel");
+  int flagged = 0;
+  for (std::size_t i = 0; i < keypoints_.size(); ++i) {
+    const int x = static_cast<int>(std::lround(keypoints_[i].raw_uv.x()));
+    const int y = static_cast<int>(std::lround(keypoints_[i].raw_uv.y()));
+    if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) continue;
+    if (mask.at<uchar>(y, x) != 0 && !ignored_[i]) {
+      ignored_[i] = true;
+      ++flagged;
+    }
+  }
+  return flagged;
+}
+
+std::vector<int> Frame::FeaturesInArea(double u, double v, double radius, int min_octave,
+                                       int max_octave) const {
+  std::vector<int> out;
+  const int x0 = std::max(0, static_cast<int>(std::floor((u - radius - min_u_) * cell_w_inv_)));
+  const int x1 = std::min(kGridCols - 1, static_cast<int>(std::floor((u + radius - min_u_) * cell_w_inv_)));
+  const int y0 = std::max(0, static_cast<int>(std::floor((v - radius - min_v_) * cell_h_inv_)));
+  const int y1 = std::min(kGridRows - 1, static_cast<int>(std::floor((v + radius - min_v_) * cell_h_inv_)));
+  const double r2 = radius * radius;
+  for (int cy = y0; cy <= y1; ++cy) {
+    for (int cx = x0; cx <= x1; ++cx) {
+      for (int i : grid_[cy * kGridCols + cx]) {
+        const FrameKeypoint& k = keypoints_[i];
+        if (ignored_[i]) continue;
+        if (min_octave >= 0 && k.octave < min_octave) continue;
+        if (max_octave >= 0 && k.octave > max_octave) continue;
+        if ((k.uv - Eigen::Vector2d(u, v)).squaredNorm() <= r2) out.push_back(i);
+      }
+    }
+  }
+  return out;
+}
+
+std::optional<Eigen::Vector3d> Frame::Unproject(std::size_t i) const {
+  const FrameKeypoint& k = keypoints_[i];
+  if (k.depth <= 0) return std::nullopt;
+  return camera_.Unproject(k.uv, k.depth);
+}
+
+}  // namespace dlslam
