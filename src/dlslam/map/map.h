@@ -1,0 +1,81 @@
+#pragma once
+// The map: keyframes, map points and the covisibility graph. The one
+// structure that several threads share: its lock lives inside, every call is
+// short, and readers get copies (views), so no caller ever holds the lock
+// across heavy work.
+
+#include <mutex>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "dlslam/map/map_types.h"
+
+namespace dlslam {
+
+// A copy of the part of the map that tracking searches in.
+struct LocalMapSnapshot {
+  std::vector<KeyFrameId> keyframes;  // the local keyframes, best first
+  KeyFrameId reference = kNoId;       // the one sharing most points with the frame
+  std::vector<MapPointView> points;   // every point the local keyframes observe
+};
+
+// A copy of one keyframe (the frame itself is shared and immutable).
+struct KeyFrameSnapshot {
+  KeyFrameId id = kNoId;
+  std::shared_ptr<const Frame> frame;
+  SE3d cam_from_world;
+  std::vector<MapPointId> points;  // per keypoint; kNoId if none
+};
+
+struct KeyFramePose {
+  KeyFrameId id = kNoId;
+  double timestamp = 0.0;
+  SE3d cam_from_world;
+};
+
+class Map {
+ public:
+  Map() = default;
+  Map(const Map&) = delete;
+  Map& operator=(const Map&) = delete;
+
+  // Adds a keyframe for `frame` at `cam_from_world`, with no points yet.
+  KeyFrameId AddKeyFrame(std::shared_ptr<const Frame> frame, const SE3d& cam_from_world);
+  // A new point at `position` (world) first seen by keypoint `keypoint` of `keyframe`.
+  MapPointId AddMapPoint(const Eigen::Vector3d& position, KeyFrameId keyframe, int keypoint);
+  // Point `point` is also seen by keypoint `keypoint` of `keyframe`. Refreshes
+  // the point's descriptor, normal and distance range. False if the keypoint
+  // already has a point.
+  bool AddObservation(MapPointId point, KeyFrameId keyframe, int keypoint);
+  // Recomputes the covisibility edges of `keyframe` (min_shared points make an
+  // edge; the best neighbour always does) and its spanning-tree parent.
+  void UpdateConnections(KeyFrameId keyframe, int min_shared = 15);
+
+  // The local map of a frame whose keypoints matched `matched_points`:
+  // keyframes observing them, their best covisible neighbours, and all their
+  // points (ORB-SLAM's local map), at most max_keyframes keyframes.
+  LocalMapSnapshot GetLocalMap(const std::vector<MapPointId>& matched_points, std::size_t max_keyframes = 80) const;
+  // Views of the given points (unknown ids are skipped).
+  std::vector<MapPointView> GetPoints(const std::vector<MapPointId>& ids) const;
+  // Tracking statistics used to cull unreliable points.
+  void RecordVisibility(const std::vector<MapPointId>& visible, const std::vector<MapPointId>& found);
+
+  // Number of points of `keyframe` observed by at least min_observations keyframes.
+  int TrackedPoints(KeyFrameId keyframe, int min_observations) const;
+  std::vector<KeyFramePose> KeyFramePoses() const;  // sorted by id
+  std::optional<KeyFrameSnapshot> GetKeyFrame(KeyFrameId keyframe) const;
+  std::size_t NumKeyFrames() const;
+  std::size_t NumMapPoints() const;
+
+ private:
+  void RefreshPoint(MapPoint& point) const;  // descriptor, normal, distances
+
+  mutable std::mutex mutex_;
+  std::unordered_map<KeyFrameId, KeyFrame> keyframes_;
+  std::unordered_map<MapPointId, MapPoint> points_;
+  KeyFrameId next_keyframe_id_ = 0;
+  MapPointId next_point_id_ = 0;
+};
+
+}  // namespace dlslam

@@ -1,0 +1,79 @@
+#include "dlslam/map/map.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/support/landmark_scene.h"
+
+namespace dlslam {
+namespace {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+SE3d Pose(double x, double yaw) {
+  Vector6d xi;
+  xi << x, 0, 0, 0, yaw, 0;
+  return SE3d::Exp(xi);
+}
+
+TEST(Map, PointsObservationsAndCovisibility) {
+  const auto scene = testing::LandmarkScene::Room(2000, 1);
+  Map map;
+  std::vector<int> lm0, lm1;
+  auto f0 = scene.MakeFrame(Pose(0, 0), 0.0, 1, 0, 0, &lm0);
+  auto f1 = scene.MakeFrame(Pose(-0.1, 0.02), 0.1, 2, 0, 0, &lm1);
+  const KeyFrameId k0 = map.AddKeyFrame(f0, Pose(0, 0));
+  const KeyFrameId k1 = map.AddKeyFrame(f1, Pose(-0.1, 0.02));
+  std::map<int, MapPointId> point_of_landmark;
+  for (std::size_t i = 0; i < lm0.size(); ++i) {
+    point_of_landmark[lm0[i]] = map.AddMapPoint(scene.points[lm0[i]], k0, static_cast<int>(i));
+  }
+  int shared = 0;
+  for (std::size_t i = 0; i < lm1.size(); ++i) {
+    const auto it = point_of_landmark.find(lm1[i]);
+    if (it == point_of_landmark.end()) continue;
+    EXPECT_TRUE(map.AddObservation(it->second, k1, static_cast<int>(i)));
+    EXPECT_FALSE(map.AddObservation(it->second, k1, static_cast<int>(i)));  // twice: refused
+    ++shared;
+  }
+  ASSERT_GT(shared, 100);
+  map.UpdateConnections(k1);
+  EXPECT_EQ(map.NumKeyFrames(), 2u);
+  EXPECT_EQ(map.NumMapPoints(), lm0.size());
+  EXPECT_EQ(map.TrackedPoints(k0, 2), shared);
+  EXPECT_EQ(map.TrackedPoints(k1, 1), shared);
+
+  // The local map of points seen in k1 holds both keyframes, k1 first.
+  std::vector<MapPointId> seen;
+  for (const auto& [lm, id] : point_of_landmark) seen.push_back(id);
+  const LocalMapSnapshot local = map.GetLocalMap(seen);
+  EXPECT_EQ(local.keyframes.size(), 2u);
+  EXPECT_EQ(local.points.size(), lm0.size());
+
+  // A point's normal points from the cameras to it; its distance range covers them.
+  const auto views = map.GetPoints({point_of_landmark.begin()->second});
+  ASSERT_EQ(views.size(), 1u);
+  const Eigen::Vector3d ray = (views[0].position - Pose(0, 0).Inverse().translation()).normalized();
+  EXPECT_GT(views[0].normal.dot(ray), 0.99);
+  const double d = (views[0].position - Pose(0, 0).Inverse().translation()).norm();
+  EXPECT_LE(views[0].min_distance, d);
+  EXPECT_GE(views[0].max_distance, d * 0.999);
+}
+
+TEST(Map, PredictOctave) {
+  ScalePyramid p;
+  EXPECT_EQ(PredictOctave(2.0, 2.0, p), 0);
+  EXPECT_EQ(PredictOctave(2.0 / 1.2, 2.0, p), 1);
+  EXPECT_EQ(PredictOctave(0.01, 2.0, p), p.levels - 1);
+  EXPECT_EQ(PredictOctave(5.0, 2.0, p), 0);
+}
+
+TEST(Map, DescriptorDistance) {
+  Descriptor a{}, b{};
+  EXPECT_EQ(DescriptorDistance(a.data(), b.data()), 0);
+  b[0] = 0xFF;
+  b[31] = 0x01;
+  EXPECT_EQ(DescriptorDistance(a.data(), b.data()), 9);
+}
+
+}  // namespace
+}  // namespace dlslam

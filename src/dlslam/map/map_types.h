@@ -1,0 +1,80 @@
+#pragma once
+// The records the map is made of. They live inside dlslam::Map, behind its
+// lock; other threads see copies (views), never references.
+
+#include <Eigen/Core>
+
+#include <array>
+#include <bit>
+#include <cstring>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "dlslam/data/frame.h"
+#include "dlslam/geometry/se3.h"
+
+namespace dlslam {
+
+using KeyFrameId = std::uint64_t;
+using MapPointId = std::uint64_t;
+inline constexpr std::uint64_t kNoId = std::numeric_limits<std::uint64_t>::max();
+
+using Descriptor = std::array<std::uint8_t, 32>;  // 256-bit ORB descriptor
+
+Descriptor DescriptorOf(const Frame& frame, std::size_t keypoint);
+
+// Hamming distance between two 256-bit descriptors.
+inline int DescriptorDistance(const std::uint8_t* a, const std::uint8_t* b) {
+  int d = 0;
+  for (int i = 0; i < 32; i += 8) {
+    std::uint64_t x, y;
+    std::memcpy(&x, a + i, 8);
+    std::memcpy(&y, b + i, 8);
+    d += std::popcount(x ^ y);
+  }
+  return d;
+}
+
+struct MapPoint {
+  MapPointId id = kNoId;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // world [m]
+  Descriptor descriptor{};  // the observation's descriptor closest to all others
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // mean viewing direction (unit)
+  // Distances [m] at which the point can be matched across the pyramid.
+  double min_distance = 0.0;
+  double max_distance = 0.0;
+  std::map<KeyFrameId, int> observations;  // keyframe -> keypoint index
+  KeyFrameId reference_keyframe = kNoId;
+  KeyFrameId first_keyframe = kNoId;
+  // Culling statistics: frames where it should have been seen / was matched.
+  int times_visible = 1;
+  int times_found = 1;
+};
+
+struct KeyFrame {
+  KeyFrameId id = kNoId;
+  std::shared_ptr<const Frame> frame;  // keypoints and descriptors (immutable)
+  SE3d cam_from_world;
+  std::vector<MapPointId> points;          // per keypoint; kNoId if none
+  std::map<KeyFrameId, int> covisibility;  // keyframe -> number of shared points
+  KeyFrameId parent = kNoId;               // spanning tree
+};
+
+// What tracking needs of a map point, copied out of the map.
+struct MapPointView {
+  MapPointId id = kNoId;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Descriptor descriptor{};
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  double min_distance = 0.0;
+  double max_distance = 0.0;
+};
+
+// Pyramid level at which a point `distance` metres away is expected to be
+// seen, given its max matchable distance (ORB-SLAM's PredictScale).
+int PredictOctave(double distance, double max_distance, const ScalePyramid& pyramid);
+
+}  // namespace dlslam

@@ -1,0 +1,146 @@
+#include "dlslam/match/projection_matcher.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "dlslam/util/check.h"
+
+namespace dlslam {
+
+void ProjectionMatchOptions::Check() const {
+  DLSLAM_CHECK_GT(radius, 0.0);
+  DLSLAM_CHECK(max_distance > 0 && max_distance <= 256, "max_distance {} outside (0, 256]", max_distance);
+  DLSLAM_CHECK(ratio > 0 && ratio <= 1, "ratio {} outside (0, 1]", ratio);
+  DLSLAM_CHECK(max_view_angle_deg > 0 && max_view_angle_deg <= 180);
+}
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kRotationBins = 30;
+
+int RotationBin(float angle_a, float angle_b) {
+  float d = angle_a - angle_b;
+  if (d < 0) d += 360.f;
+  return std::min(kRotationBins - 1, static_cast<int>(d * kRotationBins / 360.f));
+}
+
+// Keeps the matches that fall into the three fullest rotation bins (a bin is
+// kept if it has at least 10 % of the fullest one's count).
+void KeepDominantRotations(const std::vector<std::pair<int, int>>& binned, std::vector<MapPointId>* matches,
+                           int* matched) {
+  std::array<int, kRotationBins> count{};
+  for (const auto& [idx, bin] : binned) ++count[bin];
+  std::array<int, kRotationBins> order{};
+  for (int i = 0; i < kRotationBins; ++i) order[i] = i;
+  std::partial_sort(order.begin(), order.begin() + 3, order.end(),
+                    [&](int a, int b) { return count[a] > count[b]; });
+  std::array<bool, kRotationBins> keep{};
+  for (int k = 0; k < 3; ++k) keep[order[k]] = count[order[k]] > 0 && count[order[k]] * 10 >= count[order[0]];
+  for (const auto& [idx, bin] : binned) {
+    if (!keep[bin]) {
+      (*matches)[idx] = kNoId;
+      --*matched;
+    }
+  }
+}
+
+}  // namespace
+
+ProjectionMatchStats SearchByProjection(const Frame& frame, const SE3d& cam_from_world,
+                                        const std::vector<MapPointView>& points,
+                                        const ProjectionMatchOptions& options,
+                                        std::vector<MapPointId>* matches) {
+  options.Check();
+  if (matches->empty()) matches->assign(frame.size(), kNoId);
+  DLSLAM_CHECK_EQ(matches->size(), frame.size());
+  const CameraIntrinsics& cam = frame.camera();
+  const ScalePyramid& pyr = frame.pyramid();
+  const Eigen::Vector3d centre = cam_from_world.Inverse().translation();
+  const double min_cos = std::cos(options.max_view_angle_deg * kPi / 180.0);
+  // Best candidate per keypoint, so two points never take the same keypoint.
+  std::vector<int> best_distance(frame.size(), 256);
+  ProjectionMatchStats stats;
+  for (const MapPointView& p : points) {
+    const Eigen::Vector3d pc = cam_from_world * p.position;
+    if (pc.z() <= 0) continue;
+    const Eigen::Vector2d uv = cam.Project(pc);
+    if (uv.x() < 0 || uv.y() < 0 || uv.x() >= cam.width || uv.y() >= cam.height) continue;
+    const Eigen::Vector3d ray = p.position - centre;
+    const double dist = ray.norm();
+    if (dist < 0.8 * p.min_distance || dist > 1.2 * p.max_distance) continue;
+    if (ray.dot(p.normal) < min_cos * dist) continue;
+    ++stats.projected;
+    const int octave = PredictOctave(dist, p.max_distance, pyr);
+    const double radius = options.radius * pyr.Scale(octave);
+    const int lo = options.use_predicted_octave ? octave - 1 : -1;
+    const int hi = options.use_predicted_octave ? octave + 1 : -1;
+    const double right_u = uv.x() - cam.bf / pc.z();
+    int best = 256, second = 256, best_idx = -1, best_octave = -1, second_octave = -1;
+    for (int idx : frame.FeaturesInArea(uv.x(), uv.y(), radius, std::max(lo, 0), hi)) {
+      if ((*matches)[idx] != kNoId && best_distance[idx] == 256) continue;  // taken before this search
+      const FrameKeypoint& k = frame.keypoint(idx);
+      if (k.right_u >= 0 && std::abs(right_u - k.right_u) > radius) continue;
+      const int d = DescriptorDistance(p.descriptor.data(), frame.descriptor(idx));
+      if (d < best) {
+        second = best;
+        second_octave = best_octave;
+        best = d;
+        best_idx = idx;
+        best_octave = k.octave;
+      } else if (d < second) {
+        second = d;
+        second_octave = k.octave;
+      }
+    }
+    if (best_idx < 0 || best > options.max_distance) continue;
+    if (best_octave == second_octave && best > options.ratio * second) continue;
+    if (best >= best_distance[best_idx]) continue;
+    if ((*matches)[best_idx] == kNoId) ++stats.matched;
+    (*matches)[best_idx] = p.id;
+    best_distance[best_idx] = best;
+  }
+  return stats;
+}
+
+std::vector<MapPointId> MatchToKeyFrame(const Frame& frame, const Frame& keyframe_frame,
+                                        const std::vector<MapPointId>& keyframe_points, int max_distance,
+                                        double ratio) {
+  DLSLAM_CHECK_EQ(keyframe_points.size(), keyframe_frame.size());
+  std::vector<MapPointId> matches(frame.size(), kNoId);
+  std::vector<int> taken_distance(frame.size(), 256);
+  std::vector<std::pair<int, int>> binned;
+  std::vector<int> owner(frame.size(), -1);
+  for (std::size_t k = 0; k < keyframe_frame.size(); ++k) {
+    if (keyframe_points[k] == kNoId) continue;
+    int best = 256, second = 256, best_idx = -1;
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+      if (frame.ignored(i)) continue;
+      const int d = DescriptorDistance(keyframe_frame.descriptor(k), frame.descriptor(i));
+      if (d < best) {
+        second = best;
+        best = d;
+        best_idx = static_cast<int>(i);
+      } else if (d < second) {
+        second = d;
+      }
+    }
+    if (best_idx < 0 || best > max_distance || best > ratio * second) continue;
+    if (best >= taken_distance[best_idx]) continue;
+    matches[best_idx] = keyframe_points[k];
+    taken_distance[best_idx] = best;
+    owner[best_idx] = static_cast<int>(k);
+  }
+  int matched = 0;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    if (matches[i] == kNoId) continue;
+    ++matched;
+    binned.emplace_back(static_cast<int>(i),
+                        RotationBin(keyframe_frame.keypoint(owner[i]).angle, frame.keypoint(i).angle));
+  }
+  KeepDominantRotations(binned, &matches, &matched);
+  return matches;
+}
+
+}  // namespace dlslam

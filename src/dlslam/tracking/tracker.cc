@@ -1,0 +1,237 @@
+#include "dlslam/tracking/tracker.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+#include "dlslam/util/check.h"
+
+namespace dlslam {
+
+void TrackerOptions::Check() const {
+  DLSLAM_CHECK_GT(min_init_points, 0);
+  DLSLAM_CHECK_GT(motion_search_radius, 0.0);
+  DLSLAM_CHECK_GT(local_search_radius, 0.0);
+  DLSLAM_CHECK_GE(min_motion_matches, 3);
+  DLSLAM_CHECK_GE(min_reference_inliers, 3);
+  DLSLAM_CHECK_GE(min_local_map_inliers, 3);
+  DLSLAM_CHECK_GT(max_local_keyframes, 0);
+  DLSLAM_CHECK_GT(close_depth, 0.0);
+  DLSLAM_CHECK(keyframe_tracked_ratio > 0 && keyframe_tracked_ratio <= 1);
+  DLSLAM_CHECK_GT(max_frames_between_keyframes, 0);
+  DLSLAM_CHECK_GE(min_new_points, 0);
+  pose.Check();
+}
+
+const char* ToString(TrackingState state) {
+  switch (state) {
+    case TrackingState::kNotInitialized: return "not_initialized";
+    case TrackingState::kOk: return "ok";
+    case TrackingState::kLost: return "lost";
+  }
+  return "?";
+}
+
+namespace {
+
+int CountMatches(const std::vector<MapPointId>& matches) {
+  return static_cast<int>(std::count_if(matches.begin(), matches.end(), [](MapPointId id) { return id != kNoId; }));
+}
+
+std::vector<MapPointId> MatchedIds(const std::vector<MapPointId>& matches) {
+  std::vector<MapPointId> ids;
+  for (MapPointId id : matches) {
+    if (id != kNoId) ids.push_back(id);
+  }
+  return ids;
+}
+
+}  // namespace
+
+Tracker::Tracker(const TrackerOptions& options, Map* map) : options_(options), map_(map) {
+  options_.Check();
+  DLSLAM_CHECK(map_ != nullptr);
+}
+
+TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
+  DLSLAM_CHECK(frame != nullptr);
+  TrackingResult result;
+  if (state_ == TrackingState::kNotInitialized) {
+    if (Initialize(frame, &result)) state_ = TrackingState::kOk;
+    result.state = state_;
+    return result;
+  }
+  SE3d pose;
+  std::vector<MapPointId> matches;
+  bool ok = false;
+  if (state_ == TrackingState::kOk && velocity_) ok = TrackWithMotionModel(*frame, &pose, &matches);
+  if (!ok) ok = TrackReferenceKeyFrame(*frame, &pose, &matches);
+  KeyFrameId reference = reference_keyframe_;
+  if (ok) {
+    result.matches = CountMatches(matches);
+    result.inliers = TrackLocalMap(*frame, &pose, &matches, &reference);
+    ok = result.inliers >= options_.min_local_map_inliers;
+  }
+  if (!ok) {
+    state_ = TrackingState::kLost;
+    velocity_.reset();
+    result.state = state_;
+    result.reference_keyframe = reference_keyframe_;
+    return result;
+  }
+  state_ = TrackingState::kOk;
+  reference_keyframe_ = reference;
+  velocity_ = last_pose_ ? std::optional<SE3d>(pose * last_pose_->Inverse()) : std::nullopt;
+  ++frames_since_keyframe_;
+  last_pose_ = pose;
+  last_matches_ = matches;
+  if (NeedNewKeyFrame(*frame, matches, reference)) {
+    reference_keyframe_ = InsertKeyFrame(frame, pose, matches);
+    result.new_keyframe = true;
+  }
+  result.state = state_;
+  result.cam_from_world = pose;
+  result.reference_keyframe = reference_keyframe_;
+  return result;
+}
+
+bool Tracker::Initialize(const std::shared_ptr<const Frame>& frame, TrackingResult* result) {
+  int with_depth = 0;
+  for (std::size_t i = 0; i < frame->size(); ++i) with_depth += !frame->ignored(i) && frame->keypoint(i).depth > 0;
+  if (with_depth < options_.min_init_points) return false;
+  const SE3d pose = SE3d::Identity();  // the first keyframe defines the world
+  reference_keyframe_ = InsertKeyFrame(frame, pose, std::vector<MapPointId>(frame->size(), kNoId));
+  last_pose_ = pose;
+  velocity_.reset();
+  result->cam_from_world = pose;
+  result->new_keyframe = true;
+  result->reference_keyframe = reference_keyframe_;
+  result->inliers = with_depth;
+  return true;
+}
+
+bool Tracker::TrackWithMotionModel(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches) {
+  *pose = *velocity_ * *last_pose_;
+  const std::vector<MapPointView> points = map_->GetPoints(MatchedIds(last_matches_));
+  ProjectionMatchOptions search;
+  search.radius = options_.motion_search_radius;
+  matches->assign(frame.size(), kNoId);
+  SearchByProjection(frame, *pose, points, search, matches);
+  if (CountMatches(*matches) < options_.min_motion_matches) {
+    search.radius *= 2;  // a sudden motion: look wider
+    matches->assign(frame.size(), kNoId);
+    SearchByProjection(frame, *pose, points, search, matches);
+  }
+  if (CountMatches(*matches) < options_.min_motion_matches) return false;
+  return OptimizeAndPrune(frame, points, pose, matches) >= options_.min_motion_matches / 2;
+}
+
+bool Tracker::TrackReferenceKeyFrame(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches) {
+  if (reference_keyframe_ == kNoId) return false;
+  const std::optional<KeyFrameSnapshot> ref = map_->GetKeyFrame(reference_keyframe_);
+  if (!ref) return false;
+  *matches = MatchToKeyFrame(frame, *ref->frame, ref->points);
+  if (CountMatches(*matches) < options_.min_reference_inliers) return false;
+  *pose = last_pose_ ? *last_pose_ : ref->cam_from_world;
+  const std::vector<MapPointView> points = map_->GetPoints(MatchedIds(*matches));
+  return OptimizeAndPrune(frame, points, pose, matches) >= options_.min_reference_inliers;
+}
+
+int Tracker::TrackLocalMap(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches,
+                           KeyFrameId* reference) {
+  const LocalMapSnapshot local = map_->GetLocalMap(MatchedIds(*matches), options_.max_local_keyframes);
+  if (local.reference != kNoId) *reference = local.reference;
+  ProjectionMatchOptions search;
+  search.radius = options_.local_search_radius;
+  // Points already matched are not searched again.
+  std::vector<MapPointId> matched = MatchedIds(*matches);
+  std::sort(matched.begin(), matched.end());
+  std::vector<MapPointView> candidates;
+  for (const MapPointView& p : local.points) {
+    if (!std::binary_search(matched.begin(), matched.end(), p.id)) candidates.push_back(p);
+  }
+  SearchByProjection(frame, *pose, candidates, search, matches);
+  std::vector<MapPointView> all = map_->GetPoints(MatchedIds(*matches));
+  const int inliers = OptimizeAndPrune(frame, all, pose, matches);
+  // Statistics for point culling: visible = projected into the frame.
+  std::vector<MapPointId> visible;
+  visible.reserve(candidates.size());
+  for (const MapPointView& p : candidates) visible.push_back(p.id);
+  map_->RecordVisibility(visible, MatchedIds(*matches));
+  return inliers;
+}
+
+int Tracker::OptimizeAndPrune(const Frame& frame, const std::vector<MapPointView>& points, SE3d* pose,
+                              std::vector<MapPointId>* matches) const {
+  std::unordered_map<MapPointId, const MapPointView*> by_id;
+  for (const MapPointView& p : points) by_id[p.id] = &p;
+  std::vector<PoseObservation> observations;
+  std::vector<int> keypoint_of;
+  for (std::size_t i = 0; i < matches->size(); ++i) {
+    const auto it = by_id.find((*matches)[i]);
+    if (it == by_id.end()) {
+      (*matches)[i] = kNoId;
+      continue;
+    }
+    const FrameKeypoint& k = frame.keypoint(i);
+    PoseObservation o;
+    o.point_world = it->second->position;
+    o.pixel = k.uv;
+    o.right_u = k.right_u;
+    o.information = frame.pyramid().InverseSigma2(k.octave);
+    observations.push_back(o);
+    keypoint_of.push_back(static_cast<int>(i));
+  }
+  const PoseOptimizationResult r = OptimizePose(frame.camera(), *pose, observations, options_.pose);
+  if (r.num_inliers < 3) return 0;
+  *pose = r.cam_from_world;
+  for (std::size_t j = 0; j < observations.size(); ++j) {
+    if (!r.inliers[j]) (*matches)[keypoint_of[j]] = kNoId;
+  }
+  return r.num_inliers;
+}
+
+bool Tracker::NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches,
+                              KeyFrameId reference) const {
+  const int reference_tracked = map_->TrackedPoints(reference, map_->NumKeyFrames() <= 2 ? 2 : 3);
+  const int tracked = CountMatches(matches);
+  // Close keypoints: tracked ones anchor the pose; untracked ones would make good new points.
+  int close_tracked = 0, close_untracked = 0;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const double z = frame.keypoint(i).depth;
+    if (frame.ignored(i) || z <= 0 || z >= options_.close_depth) continue;
+    (matches[i] != kNoId ? close_tracked : close_untracked)++;
+  }
+  const bool need_close = close_tracked < 100 && close_untracked > 70;
+  const bool weak = tracked < options_.keyframe_tracked_ratio * reference_tracked || need_close;
+  const bool timeout = frames_since_keyframe_ >= options_.max_frames_between_keyframes;
+  return (weak || timeout) && tracked > 15;
+}
+
+KeyFrameId Tracker::InsertKeyFrame(const std::shared_ptr<const Frame>& frame, const SE3d& pose,
+                                   const std::vector<MapPointId>& matches) {
+  const KeyFrameId kf = map_->AddKeyFrame(frame, pose);
+  for (std::size_t i = 0; i < matches.size(); ++i) {
+    if (matches[i] != kNoId) map_->AddObservation(matches[i], kf, static_cast<int>(i));
+  }
+  // New points from depth: the closest unmatched keypoints.
+  std::vector<std::pair<double, int>> by_depth;
+  for (std::size_t i = 0; i < frame->size(); ++i) {
+    const double z = frame->keypoint(i).depth;
+    if (matches[i] == kNoId && !frame->ignored(i) && z > 0) by_depth.emplace_back(z, static_cast<int>(i));
+  }
+  std::sort(by_depth.begin(), by_depth.end());
+  const SE3d world_from_cam = pose.Inverse();
+  int created = 0;
+  for (const auto& [z, i] : by_depth) {
+    if (z >= options_.close_depth && created >= options_.min_new_points) break;
+    map_->AddMapPoint(world_from_cam * *frame->Unproject(i), kf, i);
+    ++created;
+  }
+  map_->UpdateConnections(kf);
+  frames_since_keyframe_ = 0;
+  // The next frame searches the keyframe's points, old and new.
+  last_matches_ = map_->GetKeyFrame(kf)->points;
+  return kf;
+}
+
+}  // namespace dlslam

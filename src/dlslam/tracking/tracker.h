@@ -1,0 +1,104 @@
+#pragma once
+// Frame-to-map tracking (ORB-SLAM's Tracking for RGB-D, without the map
+// management that local mapping owns):
+//   1. the first frame with enough depth starts the map;
+//   2. a constant-velocity guess, refined by matching the last frame's points
+//      by projection (radius doubled on failure), or, if that fails, by
+//      descriptor matching against the reference keyframe;
+//   3. the local map (covisible keyframes' points) is projected and matched,
+//      and the pose optimised again;
+//   4. a keyframe is requested when tracking weakens.
+// A frame that cannot be tracked is reported lost; the next frames try the
+// reference keyframe again (relocalization proper is place recognition).
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "dlslam/data/frame.h"
+#include "dlslam/map/map.h"
+#include "dlslam/match/projection_matcher.h"
+#include "dlslam/optimize/pose_optimizer.h"
+
+namespace dlslam {
+
+struct TrackerOptions {
+  // Keypoints with depth needed to start the map from one frame.
+  int min_init_points = 500;
+  // Projection search around the constant-velocity guess [px at level 0].
+  double motion_search_radius = 15.0;
+  // Projection search for the local map [px at level 0] (ORB-SLAM: 4 px for
+  // oblique views, tightened by pose accuracy).
+  double local_search_radius = 4.0;
+  // Matches needed after the motion-model search before optimising.
+  int min_motion_matches = 20;
+  // Inliers needed after the reference-keyframe fallback.
+  int min_reference_inliers = 10;
+  // Inliers needed after tracking the local map for the frame to count as tracked.
+  int min_local_map_inliers = 30;
+  // Keyframes in the local map.
+  int max_local_keyframes = 40;
+  // Keypoints closer than this [m] are "close": their depth is reliable
+  // (ORB-SLAM's ThDepth * baseline, ~3 m for a Kinect).
+  double close_depth = 3.0;
+  // New keyframe when the frame tracks fewer than this fraction of the
+  // reference keyframe's points (ORB-SLAM's RGB-D value 0.75) ...
+  double keyframe_tracked_ratio = 0.75;
+  // ... or after this many frames (about a second of video).
+  int max_frames_between_keyframes = 30;
+  // A keyframe creates points for its closest unmatched keypoints with depth:
+  // all closer than close_depth, and at least this many.
+  int min_new_points = 100;
+  PoseOptimizerOptions pose;
+
+  void Check() const;
+};
+
+enum class TrackingState { kNotInitialized, kOk, kLost };
+const char* ToString(TrackingState state);
+
+struct TrackingResult {
+  TrackingState state = TrackingState::kNotInitialized;
+  std::optional<SE3d> cam_from_world;  // set when tracked
+  int matches = 0;                     // map points matched before the final optimisation
+  int inliers = 0;                     // after it
+  bool new_keyframe = false;
+  KeyFrameId reference_keyframe = kNoId;
+};
+
+class Tracker {
+ public:
+  Tracker(const TrackerOptions& options, Map* map);
+
+  // Tracks one frame. The frame's ignored keypoints are never matched.
+  TrackingResult Track(const std::shared_ptr<const Frame>& frame);
+
+  TrackingState state() const { return state_; }
+
+ private:
+  bool Initialize(const std::shared_ptr<const Frame>& frame, TrackingResult* result);
+  // Pose from the last frame's points with the constant-velocity guess.
+  bool TrackWithMotionModel(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches);
+  // Pose from descriptor matches against the reference keyframe.
+  bool TrackReferenceKeyFrame(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches);
+  // Adds local-map matches and re-optimises; returns the inlier count.
+  int TrackLocalMap(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches, KeyFrameId* reference);
+  // Optimises the pose on the matches; drops outliers; returns inliers.
+  int OptimizeAndPrune(const Frame& frame, const std::vector<MapPointView>& points, SE3d* pose,
+                       std::vector<MapPointId>* matches) const;
+  bool NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches, KeyFrameId reference) const;
+  KeyFrameId InsertKeyFrame(const std::shared_ptr<const Frame>& frame, const SE3d& pose,
+                            const std::vector<MapPointId>& matches);
+
+  TrackerOptions options_;
+  Map* map_;
+  TrackingState state_ = TrackingState::kNotInitialized;
+  // The last tracked frame: its pose, matched points and the motion into it.
+  std::optional<SE3d> last_pose_;
+  std::optional<SE3d> velocity_;  // cam_from_world_last * world_from_cam_before_last
+  std::vector<MapPointId> last_matches_;
+  KeyFrameId reference_keyframe_ = kNoId;
+  int frames_since_keyframe_ = 0;
+};
+
+}  // namespace dlslam

@@ -1,0 +1,76 @@
+#include "dlslam/tracking/tracker.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tests/support/landmark_scene.h"
+
+namespace dlslam {
+namespace {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+// A smooth camera path through the room: ~1 m of translation, +-15 deg yaw.
+SE3d CamFromWorld(int i) {
+  const double t = i / 30.0;
+  Vector6d xi;
+  xi << 0.4 * std::sin(0.8 * t), 0.1 * std::sin(1.3 * t), 0.3 * std::sin(0.5 * t), 0.05 * std::sin(0.7 * t),
+      0.25 * std::sin(0.6 * t), 0.03 * std::sin(t);
+  return SE3d::Exp(xi).Inverse();  // xi describes world_from_cam
+}
+
+TEST(Tracker, FollowsASmoothPathAccurately) {
+  const auto scene = testing::LandmarkScene::Room(6000, 3);
+  Map map;
+  Tracker tracker(TrackerOptions(), &map);
+  double max_error = 0;
+  int keyframes = 0;
+  for (int i = 0; i < 150; ++i) {
+    const SE3d truth = CamFromWorld(i);
+    const TrackingResult r = tracker.Track(scene.MakeFrame(truth, i / 30.0, 100 + i));
+    ASSERT_EQ(r.state, TrackingState::kOk) << "frame " << i;
+    ASSERT_TRUE(r.cam_from_world.has_value());
+    // The first keyframe defines the world: compare relative to frame 0.
+    const SE3d estimate_rel = *r.cam_from_world;
+    const SE3d truth_rel = truth * CamFromWorld(0).Inverse();
+    const double err = (estimate_rel.Inverse().translation() - truth_rel.Inverse().translation()).norm();
+    max_error = std::max(max_error, err);
+    keyframes += r.new_keyframe;
+  }
+  EXPECT_LT(max_error, 0.01);  // exact depth, 0.5 px noise: sub-centimetre
+  EXPECT_GT(keyframes, 2);
+  EXPECT_LT(keyframes, 60);
+  EXPECT_EQ(static_cast<int>(map.NumKeyFrames()), keyframes);
+}
+
+TEST(Tracker, WaitsForDepthThenInitializes) {
+  const auto scene = testing::LandmarkScene::Room(3000, 4);
+  Map map;
+  Tracker tracker(TrackerOptions(), &map);
+  // A frame without depth cannot start the map.
+  auto frame = scene.MakeFrame(CamFromWorld(0), 0.0, 1);
+  const Frame empty = Frame::Create(0.0, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
+  EXPECT_EQ(tracker.Track(std::make_shared<Frame>(empty)).state, TrackingState::kNotInitialized);
+  EXPECT_EQ(tracker.Track(frame).state, TrackingState::kOk);
+  EXPECT_EQ(map.NumKeyFrames(), 1u);
+}
+
+TEST(Tracker, ReportsLostAndRecoversThroughTheReferenceKeyFrame) {
+  const auto scene = testing::LandmarkScene::Room(6000, 5);
+  Map map;
+  Tracker tracker(TrackerOptions(), &map);
+  for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+  // A black frame: nothing to match.
+  const Frame black = Frame::Create(0.4, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
+  EXPECT_EQ(tracker.Track(std::make_shared<Frame>(black)).state, TrackingState::kLost);
+  // The camera reappears nearby: tracking resumes and the pose is right.
+  const SE3d truth = CamFromWorld(14);
+  const TrackingResult r = tracker.Track(scene.MakeFrame(truth, 14 / 30.0, 99));
+  ASSERT_EQ(r.state, TrackingState::kOk);
+  const SE3d truth_rel = truth * CamFromWorld(0).Inverse();
+  EXPECT_LT((r.cam_from_world->Inverse().translation() - truth_rel.Inverse().translation()).norm(), 0.01);
+}
+
+}  // namespace
+}  // namespace dlslam
