@@ -1,0 +1,58 @@
+#pragma once
+// Bundle adjustment of keyframe poses and map points with Ceres (ORB-SLAM's
+// local BA): robust reprojection errors (u, v and, with depth, the virtual
+// right u), two passes with outlier removal in between. Knows nothing of the
+// map: it takes and returns plain values.
+
+#include <Eigen/Core>
+
+#include <vector>
+
+#include "dlslam/data/camera.h"
+#include "dlslam/geometry/se3.h"
+
+namespace dlslam {
+
+struct BundleProblem {
+  struct Pose {
+    SE3d cam_from_world;
+    bool fixed = false;  // seen only for its observations (ORB-SLAM's fixed keyframes)
+  };
+  struct Observation {
+    int pose = 0;   // index into poses
+    int point = 0;  // index into points
+    Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // undistorted [px]
+    double right_u = -1.0;                            // < 0: no depth
+    double information = 1.0;                         // 1 / sigma^2 of the octave
+  };
+  CameraIntrinsics camera;
+  std::vector<Pose> poses;
+  std::vector<Eigen::Vector3d> points;  // world [m]
+  std::vector<Observation> observations;
+};
+
+struct BundleAdjusterOptions {
+  // Iterations of the first (robust) pass and of the second pass without outliers.
+  int first_pass_iterations = 5;
+  int second_pass_iterations = 10;
+  // Chi-square gates (95 %) for 2 and 3 dof; also the Huber thresholds squared.
+  double chi2_mono = 5.991;
+  double chi2_stereo = 7.815;
+  // Threads Ceres may use.
+  int threads = 1;
+
+  void Check() const;
+};
+
+struct BundleSummary {
+  int iterations = 0;
+  int outliers = 0;           // observations flagged in `outlier`
+  double initial_cost = 0.0;  // Ceres cost before and after
+  double final_cost = 0.0;
+  std::vector<bool> outlier;  // per observation, after the second pass
+};
+
+// Optimises the non-fixed poses and all points in place.
+BundleSummary SolveBundle(BundleProblem* problem, const BundleAdjusterOptions& options = {});
+
+}  // namespace dlslam
