@@ -40,8 +40,12 @@ MapPointId Map::AddMapPoint(const Eigen::Vector3d& position, KeyFrameId keyframe
 
 bool Map::AddObservation(MapPointId point, KeyFrameId keyframe, int keypoint) {
   std::lock_guard lock(mutex_);
-  KeyFrame& kf = keyframes_.at(keyframe);
-  MapPoint& p = points_.at(point);
+  const auto kf_it = keyframes_.find(keyframe);
+  const auto p_it = points_.find(point);
+  // Local mapping may have culled either since the caller looked.
+  if (kf_it == keyframes_.end() || p_it == points_.end()) return false;
+  KeyFrame& kf = kf_it->second;
+  MapPoint& p = p_it->second;
   if (kf.points.at(keypoint) != kNoId || p.observations.count(keyframe)) return false;
   kf.points[keypoint] = point;
   p.observations[keyframe] = keypoint;
@@ -186,8 +190,10 @@ void Map::RecordVisibility(const std::vector<MapPointId>& visible, const std::ve
 
 int Map::TrackedPoints(KeyFrameId keyframe, int min_observations) const {
   std::lock_guard lock(mutex_);
+  const auto it = keyframes_.find(keyframe);
+  if (it == keyframes_.end()) return 0;
   int n = 0;
-  for (MapPointId pid : keyframes_.at(keyframe).points) {
+  for (MapPointId pid : it->second.points) {
     if (pid != kNoId && static_cast<int>(points_.at(pid).observations.size()) >= min_observations) ++n;
   }
   return n;

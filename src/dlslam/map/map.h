@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "dlslam/map/map_types.h"
+#include "dlslam/optimize/bundle_adjuster.h"
 
 namespace dlslam {
 
@@ -26,6 +27,15 @@ struct KeyFrameSnapshot {
   std::shared_ptr<const Frame> frame;
   SE3d cam_from_world;
   std::vector<MapPointId> points;  // per keypoint; kNoId if none
+};
+
+// A local bundle adjustment problem cut out of the map, with the ids that
+// its indices stand for.
+struct LocalBundle {
+  BundleProblem problem;
+  std::vector<KeyFrameId> pose_ids;   // per problem.poses
+  std::vector<MapPointId> point_ids;  // per problem.points
+  std::vector<int> keypoints;         // per problem.observations: keypoint index
 };
 
 struct KeyFramePose {
@@ -46,7 +56,7 @@ class Map {
   MapPointId AddMapPoint(const Eigen::Vector3d& position, KeyFrameId keyframe, int keypoint);
   // Point `point` is also seen by keypoint `keypoint` of `keyframe`. Refreshes
   // the point's descriptor, normal and distance range. False if the keypoint
-  // already has a point.
+  // already has a point, or the point or keyframe no longer exists.
   bool AddObservation(MapPointId point, KeyFrameId keyframe, int keypoint);
   // Recomputes the covisibility edges of `keyframe` (min_shared points make an
   // edge; the best neighbour always does) and its spanning-tree parent.
@@ -61,15 +71,47 @@ class Map {
   // Tracking statistics used to cull unreliable points.
   void RecordVisibility(const std::vector<MapPointId>& visible, const std::vector<MapPointId>& found);
 
-  // Number of points of `keyframe` observed by at least min_observations keyframes.
+  // Number of points of `keyframe` observed by at least min_observations
+  // keyframes (0 for a culled keyframe).
   int TrackedPoints(KeyFrameId keyframe, int min_observations) const;
   std::vector<KeyFramePose> KeyFramePoses() const;  // sorted by id
   std::optional<KeyFrameSnapshot> GetKeyFrame(KeyFrameId keyframe) const;
   std::size_t NumKeyFrames() const;
   std::size_t NumMapPoints() const;
+  // Pose of a keyframe, also of one that was culled (through its parent).
+  std::optional<SE3d> ResolveCamFromWorld(KeyFrameId keyframe) const;
+
+  // --- Maintenance by local mapping (map_maintenance.cc) ---
+  // `keyframe` and its covisible neighbours, free; every other keyframe that
+  // sees their points, fixed; keyframe 0 always fixed (it defines the world).
+  LocalBundle BuildLocalBundle(KeyFrameId keyframe) const;
+  // Writes back poses and positions of entities that still exist, and drops
+  // the observations flagged as outliers.
+  void ApplyLocalBundle(const LocalBundle& bundle, const std::vector<bool>& outlier);
+  // Removes points created in the last keyframes that tracking rarely finds
+  // (found / visible < min_found_ratio) or that too few keyframes observe
+  // once two keyframes have passed. Returns how many were removed.
+  int CullRecentPoints(KeyFrameId current, int min_observations = 3, double min_found_ratio = 0.25);
+  // Removes covisible neighbours of `current` (never keyframe 0 nor
+  // `current`) whose close points are nearly all (redundancy) seen by at
+  // least min_views other keyframes at the same or a finer scale. Returns them.
+  std::vector<KeyFrameId> CullRedundantKeyFrames(KeyFrameId current, double close_depth, double redundancy = 0.9,
+                                                 int min_views = 3);
 
  private:
   void RefreshPoint(MapPoint& point) const;  // descriptor, normal, distances
+  // These expect the lock to be held.
+  void EraseObservationLocked(MapPointId point, KeyFrameId keyframe);
+  void ErasePointLocked(MapPointId point);
+  void EraseKeyFrameLocked(KeyFrameId keyframe);
+
+  // Culled keyframes: parent and the transform from it, so that frames
+  // tracked against them keep a pose.
+  struct Culled {
+    KeyFrameId parent = kNoId;
+    SE3d cam_from_parent;
+  };
+  std::unordered_map<KeyFrameId, Culled> culled_;
 
   mutable std::mutex mutex_;
   std::unordered_map<KeyFrameId, KeyFrame> keyframes_;

@@ -72,6 +72,7 @@ ProjectionMatchStats SearchByProjection(const Frame& frame, const SE3d& cam_from
     if (dist < 0.8 * p.min_distance || dist > 1.2 * p.max_distance) continue;
     if (ray.dot(p.normal) < min_cos * dist) continue;
     ++stats.projected;
+    stats.visible.push_back(p.id);
     const int octave = PredictOctave(dist, p.max_distance, pyr);
     const double radius = options.radius * pyr.Scale(octave);
     const int lo = options.use_predicted_octave ? octave - 1 : -1;

@@ -31,6 +31,7 @@ struct ProjectionMatchOptions {
 struct ProjectionMatchStats {
   int projected = 0;  // points inside the image and their distance range
   int matched = 0;
+  std::vector<MapPointId> visible;  // ids of the projected points
 };
 
 // For every point not yet matched (matches[i] == kNoId for the keypoint that

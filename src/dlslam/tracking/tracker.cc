@@ -99,7 +99,10 @@ bool Tracker::Initialize(const std::shared_ptr<const Frame>& frame, TrackingResu
   for (std::size_t i = 0; i < frame->size(); ++i) with_depth += !frame->ignored(i) && frame->keypoint(i).depth > 0;
   if (with_depth < options_.min_init_points) return false;
   const SE3d pose = SE3d::Identity();  // the first keyframe defines the world
-  reference_keyframe_ = InsertKeyFrame(frame, pose, std::vector<MapPointId>(frame->size(), kNoId));
+  // The first keyframe takes every keypoint with depth (ORB-SLAM's RGB-D
+  // initialisation); later ones only the close ones.
+  reference_keyframe_ =
+      InsertKeyFrame(frame, pose, std::vector<MapPointId>(frame->size(), kNoId), /*all_depth_points=*/true);
   last_pose_ = pose;
   velocity_.reset();
   result->cam_from_world = pose;
@@ -149,13 +152,13 @@ int Tracker::TrackLocalMap(const Frame& frame, SE3d* pose, std::vector<MapPointI
   for (const MapPointView& p : local.points) {
     if (!std::binary_search(matched.begin(), matched.end(), p.id)) candidates.push_back(p);
   }
-  SearchByProjection(frame, *pose, candidates, search, matches);
+  const ProjectionMatchStats stats = SearchByProjection(frame, *pose, candidates, search, matches);
   std::vector<MapPointView> all = map_->GetPoints(MatchedIds(*matches));
   const int inliers = OptimizeAndPrune(frame, all, pose, matches);
-  // Statistics for point culling: visible = projected into the frame.
-  std::vector<MapPointId> visible;
-  visible.reserve(candidates.size());
-  for (const MapPointView& p : candidates) visible.push_back(p.id);
+  // Statistics for point culling: visible = projected into the frame; the
+  // points matched before this search were visible too.
+  std::vector<MapPointId> visible = stats.visible;
+  visible.insert(visible.end(), matched.begin(), matched.end());
   map_->RecordVisibility(visible, MatchedIds(*matches));
   return inliers;
 }
@@ -208,7 +211,7 @@ bool Tracker::NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>&
 }
 
 KeyFrameId Tracker::InsertKeyFrame(const std::shared_ptr<const Frame>& frame, const SE3d& pose,
-                                   const std::vector<MapPointId>& matches) {
+                                   const std::vector<MapPointId>& matches, bool all_depth_points) {
   const KeyFrameId kf = map_->AddKeyFrame(frame, pose);
   for (std::size_t i = 0; i < matches.size(); ++i) {
     if (matches[i] != kNoId) map_->AddObservation(matches[i], kf, static_cast<int>(i));
@@ -223,7 +226,7 @@ KeyFrameId Tracker::InsertKeyFrame(const std::shared_ptr<const Frame>& frame, co
   const SE3d world_from_cam = pose.Inverse();
   int created = 0;
   for (const auto& [z, i] : by_depth) {
-    if (z >= options_.close_depth && created >= options_.min_new_points) break;
+    if (!all_depth_points && z >= options_.close_depth && created >= options_.min_new_points) break;
     map_->AddMapPoint(world_from_cam * *frame->Unproject(i), kf, i);
     ++created;
   }

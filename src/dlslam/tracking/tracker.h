@@ -88,7 +88,7 @@ class Tracker {
                        std::vector<MapPointId>* matches) const;
   bool NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches, KeyFrameId reference) const;
   KeyFrameId InsertKeyFrame(const std::shared_ptr<const Frame>& frame, const SE3d& pose,
-                            const std::vector<MapPointId>& matches);
+                            const std::vector<MapPointId>& matches, bool all_depth_points = false);
 
   TrackerOptions options_;
   Map* map_;

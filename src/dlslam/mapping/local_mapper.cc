@@ -1,0 +1,71 @@
+#include "dlslam/mapping/local_mapper.h"
+
+#include <spdlog/spdlog.h>
+
+#include "dlslam/util/check.h"
+
+namespace dlslam {
+
+void LocalMapperOptions::Check() const {
+  DLSLAM_CHECK_GT(queue_capacity, 0u);
+  DLSLAM_CHECK_GE(min_point_observations, 1);
+  DLSLAM_CHECK(min_found_ratio >= 0 && min_found_ratio <= 1);
+  DLSLAM_CHECK(keyframe_redundancy > 0 && keyframe_redundancy <= 1);
+  DLSLAM_CHECK_GT(close_depth, 0.0);
+  bundle.Check();
+}
+
+LocalMapper::LocalMapper(const LocalMapperOptions& options, Map* map)
+    : options_(options), map_(map), queue_(options.queue_capacity) {
+  options_.Check();
+  DLSLAM_CHECK(map_ != nullptr);
+}
+
+LocalMapper::~LocalMapper() { Stop(); }
+
+void LocalMapper::Start() {
+  DLSLAM_CHECK(!thread_.joinable(), "local mapping already started");
+  thread_ = std::thread([this] { Run(); });
+}
+
+void LocalMapper::Enqueue(KeyFrameId keyframe) {
+  if (!thread_.joinable()) {
+    Process(keyframe);
+    return;
+  }
+  queue_.Push(keyframe);
+}
+
+void LocalMapper::Stop() {
+  queue_.Stop();
+  if (thread_.joinable()) thread_.join();
+}
+
+void LocalMapper::Run() {
+  while (const std::optional<KeyFrameId> keyframe = queue_.Pop()) {
+    try {
+      Process(*keyframe);
+    } catch (const std::exception& e) {
+      // A failed refinement must not take tracking down: the keyframe stays
+      // as tracking made it.
+      spdlog::warn("local mapping of keyframe {} failed: {}", *keyframe, e.what());
+    }
+  }
+}
+
+void LocalMapper::Process(KeyFrameId keyframe) {
+  if (!map_->GetKeyFrame(keyframe)) return;  // culled while queued
+  stats_.points_culled += map_->CullRecentPoints(keyframe, options_.min_point_observations, options_.min_found_ratio);
+  if (options_.bundle_adjustment) {
+    LocalBundle bundle = map_->BuildLocalBundle(keyframe);
+    const BundleSummary summary = SolveBundle(&bundle.problem, options_.bundle);
+    map_->ApplyLocalBundle(bundle, summary.outlier);
+    stats_.bundle_outliers += summary.outliers;
+  }
+  stats_.keyframes_culled +=
+      static_cast<int>(map_->CullRedundantKeyFrames(keyframe, options_.close_depth, options_.keyframe_redundancy).size());
+  map_->UpdateConnections(keyframe);
+  ++stats_.keyframes_processed;
+}
+
+}  // namespace dlslam

@@ -1,0 +1,71 @@
+#pragma once
+// Local mapping: refines the map around each new keyframe, in its own thread
+// (or inline, for the deterministic sequential mode). Per keyframe: cull the
+// recent points tracking rarely finds, local bundle adjustment, cull
+// redundant keyframes. Keyframes arrive through a bounded queue; the thread
+// owns no map state of its own.
+
+#include <atomic>
+#include <thread>
+
+#include "dlslam/map/map.h"
+#include "dlslam/optimize/bundle_adjuster.h"
+#include "dlslam/util/bounded_queue.h"
+
+namespace dlslam {
+
+struct LocalMapperOptions {
+  // Keyframes waiting for local mapping; tracking blocks when it is full.
+  std::size_t queue_capacity = 8;
+  // A recent point needs this many keyframes observing it. (ORB-SLAM keeps
+  // RGB-D points with more than 3 observations, counting one with depth as
+  // two: i.e. two keyframes.)
+  int min_point_observations = 2;
+  // ... and tracking must find it in this fraction of the frames it should.
+  double min_found_ratio = 0.25;
+  // Keyframes whose close points are this redundant are culled (ORB-SLAM: 0.9).
+  double keyframe_redundancy = 0.9;
+  // Keypoints closer than this [m] have reliable depth (see TrackerOptions).
+  double close_depth = 3.0;
+  bool bundle_adjustment = true;
+  BundleAdjusterOptions bundle;
+
+  void Check() const;
+};
+
+struct LocalMappingStats {
+  int keyframes_processed = 0;
+  int points_culled = 0;
+  int keyframes_culled = 0;
+  int bundle_outliers = 0;
+};
+
+class LocalMapper {
+ public:
+  LocalMapper(const LocalMapperOptions& options, Map* map);
+  ~LocalMapper();
+  LocalMapper(const LocalMapper&) = delete;
+  LocalMapper& operator=(const LocalMapper&) = delete;
+
+  // Starts the thread. Without it, Enqueue processes inline (sequential mode).
+  void Start();
+  // Hands a new keyframe over; blocks while the queue is full.
+  void Enqueue(KeyFrameId keyframe);
+  // Finishes the queued keyframes, then joins the thread.
+  void Stop();
+
+  // Valid after Stop() (or any time in sequential mode).
+  LocalMappingStats stats() const { return stats_; }
+
+ private:
+  void Process(KeyFrameId keyframe);
+  void Run();
+
+  LocalMapperOptions options_;
+  Map* map_;
+  BoundedQueue<KeyFrameId> queue_;
+  std::thread thread_;
+  LocalMappingStats stats_;  // written only by the mapping thread (or inline)
+};
+
+}  // namespace dlslam

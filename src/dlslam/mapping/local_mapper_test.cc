@@ -1,0 +1,83 @@
+#include "dlslam/mapping/local_mapper.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dlslam/tracking/tracker.h"
+#include "tests/support/landmark_scene.h"
+
+namespace dlslam {
+namespace {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+SE3d CamFromWorld(int i) {
+  const double t = i / 30.0;
+  Vector6d xi;
+  xi << 0.5 * std::sin(0.7 * t), 0.1 * std::sin(1.1 * t), 0.4 * std::sin(0.4 * t), 0.05 * std::sin(0.6 * t),
+      0.3 * std::sin(0.5 * t), 0.02 * std::sin(t);
+  return SE3d::Exp(xi).Inverse();
+}
+
+struct RunResult {
+  std::vector<SE3d> poses;
+  double max_error = 0;
+  LocalMappingStats stats;
+  std::size_t keyframes = 0;
+};
+
+RunResult RunSequence(bool threaded, bool bundle_adjustment, int frames) {
+  const auto scene = testing::LandmarkScene::Room(6000, 8);
+  Map map;
+  Tracker tracker(TrackerOptions(), &map);
+  LocalMapperOptions options;
+  options.bundle_adjustment = bundle_adjustment;
+  LocalMapper mapper(options, &map);
+  if (threaded) mapper.Start();
+  RunResult out;
+  for (int i = 0; i < frames; ++i) {
+    const SE3d truth = CamFromWorld(i);
+    const TrackingResult r = tracker.Track(scene.MakeFrame(truth, i / 30.0, 500 + i, 1.0));
+    EXPECT_EQ(r.state, TrackingState::kOk) << "frame " << i;
+    if (r.state != TrackingState::kOk) continue;
+    if (r.new_keyframe) mapper.Enqueue(r.reference_keyframe);
+    out.poses.push_back(*r.cam_from_world);
+    const SE3d truth_rel = truth * CamFromWorld(0).Inverse();
+    out.max_error = std::max(
+        out.max_error, (r.cam_from_world->Inverse().translation() - truth_rel.Inverse().translation()).norm());
+  }
+  mapper.Stop();
+  out.stats = mapper.stats();
+  out.keyframes = map.NumKeyFrames();
+  return out;
+}
+
+TEST(LocalMapper, SequentialRunIsAccurateAndProcessesEveryKeyFrame) {
+  const RunResult r = RunSequence(false, true, 200);
+  EXPECT_LT(r.max_error, 0.01);
+  EXPECT_GT(r.stats.keyframes_processed, 3);
+  EXPECT_EQ(static_cast<std::size_t>(r.stats.keyframes_processed - r.stats.keyframes_culled), r.keyframes);
+}
+
+TEST(LocalMapper, SequentialModeIsReproducibleBitForBit) {
+  const RunResult a = RunSequence(false, true, 90);
+  const RunResult b = RunSequence(false, true, 90);
+  ASSERT_EQ(a.poses.size(), b.poses.size());
+  for (std::size_t i = 0; i < a.poses.size(); ++i) EXPECT_EQ(a.poses[i].matrix(), b.poses[i].matrix());
+}
+
+TEST(LocalMapper, ThreadedRunTracksAsWell) {
+  const RunResult r = RunSequence(true, true, 200);
+  EXPECT_LT(r.max_error, 0.01);
+  EXPECT_GT(r.stats.keyframes_processed, 3);
+}
+
+TEST(LocalMapperOptions, Check) {
+  LocalMapperOptions o;
+  o.min_found_ratio = 2;
+  EXPECT_THROW(o.Check(), Error);
+}
+
+}  // namespace
+}  // namespace dlslam
