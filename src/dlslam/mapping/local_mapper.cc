@@ -15,8 +15,8 @@ void LocalMapperOptions::Check() const {
   bundle.Check();
 }
 
-LocalMapper::LocalMapper(const LocalMapperOptions& options, Map* map)
-    : options_(options), map_(map), queue_(options.queue_capacity) {
+LocalMapper::LocalMapper(const LocalMapperOptions& options, Map* map, StageTimings* timings)
+    : options_(options), map_(map), timings_(timings), queue_(options.queue_capacity) {
   options_.Check();
   DLSLAM_CHECK(map_ != nullptr);
 }
@@ -53,19 +53,33 @@ void LocalMapper::Run() {
   }
 }
 
+LocalMappingStats LocalMapper::stats() const {
+  std::lock_guard lock(stats_mutex_);
+  return stats_;
+}
+
 void LocalMapper::Process(KeyFrameId keyframe) {
   if (!map_->GetKeyFrame(keyframe)) return;  // culled while queued
-  stats_.points_culled += map_->CullRecentPoints(keyframe, options_.min_point_observations, options_.min_found_ratio);
+  Stopwatch total;
+  LocalMappingStats step;
+  step.points_culled = map_->CullRecentPoints(keyframe, options_.min_point_observations, options_.min_found_ratio);
   if (options_.bundle_adjustment) {
+    Stopwatch ba;
     LocalBundle bundle = map_->BuildLocalBundle(keyframe);
     const BundleSummary summary = SolveBundle(&bundle.problem, options_.bundle);
     map_->ApplyLocalBundle(bundle, summary.outlier);
-    stats_.bundle_outliers += summary.outliers;
+    step.bundle_outliers = summary.outliers;
+    if (timings_) timings_->Add("local_bundle_adjustment", ba.ElapsedMs());
   }
-  stats_.keyframes_culled +=
+  step.keyframes_culled =
       static_cast<int>(map_->CullRedundantKeyFrames(keyframe, options_.close_depth, options_.keyframe_redundancy).size());
   map_->UpdateConnections(keyframe);
+  if (timings_) timings_->Add("local_mapping", total.ElapsedMs());
+  std::lock_guard lock(stats_mutex_);
   ++stats_.keyframes_processed;
+  stats_.points_culled += step.points_culled;
+  stats_.keyframes_culled += step.keyframes_culled;
+  stats_.bundle_outliers += step.bundle_outliers;
 }
 
 }  // namespace dlslam

@@ -11,6 +11,7 @@
 #include "dlslam/map/map.h"
 #include "dlslam/optimize/bundle_adjuster.h"
 #include "dlslam/util/bounded_queue.h"
+#include "dlslam/util/timing.h"
 
 namespace dlslam {
 
@@ -42,7 +43,8 @@ struct LocalMappingStats {
 
 class LocalMapper {
  public:
-  LocalMapper(const LocalMapperOptions& options, Map* map);
+  // `timings` (optional, outlives the mapper) receives per-step durations.
+  LocalMapper(const LocalMapperOptions& options, Map* map, StageTimings* timings = nullptr);
   ~LocalMapper();
   LocalMapper(const LocalMapper&) = delete;
   LocalMapper& operator=(const LocalMapper&) = delete;
@@ -54,8 +56,7 @@ class LocalMapper {
   // Finishes the queued keyframes, then joins the thread.
   void Stop();
 
-  // Valid after Stop() (or any time in sequential mode).
-  LocalMappingStats stats() const { return stats_; }
+  LocalMappingStats stats() const;
 
  private:
   void Process(KeyFrameId keyframe);
@@ -63,9 +64,11 @@ class LocalMapper {
 
   LocalMapperOptions options_;
   Map* map_;
+  StageTimings* timings_;
   BoundedQueue<KeyFrameId> queue_;
   std::thread thread_;
-  LocalMappingStats stats_;  // written only by the mapping thread (or inline)
+  mutable std::mutex stats_mutex_;
+  LocalMappingStats stats_;
 };
 
 }  // namespace dlslam

@@ -1,0 +1,101 @@
+#include "dlslam/system/slam_system.h"
+
+#include "dlslam/util/check.h"
+
+namespace dlslam {
+
+void SystemOptions::Check() const {
+  orb.Check();
+  tracker.Check();
+  mapping.Check();
+}
+
+SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& options)
+    : camera_(camera),
+      options_(options),
+      extractor_(options.orb),
+      pyramid_{options.orb.n_levels, options.orb.scale_factor},
+      tracker_(options.tracker, &map_),
+      mapper_(options.mapping, &map_, &timings_) {
+  camera_.Check();
+  options_.Check();
+  if (!options_.sequential) mapper_.Start();
+}
+
+SlamSystem::~SlamSystem() { Shutdown(); }
+
+TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth, double timestamp,
+                                     const cv::Mat& dynamic_mask) {
+  DLSLAM_CHECK(!shut_down_, "the system was shut down");
+  DLSLAM_CHECK(!colour.empty(), "empty colour image at t={:.6f}", timestamp);
+  DLSLAM_CHECK(colour.cols == camera_.width && colour.rows == camera_.height,
+               "colour image at t={:.6f} is {}x{}, camera is {}x{}", timestamp, colour.cols, colour.rows,
+               camera_.width, camera_.height);
+  ++counts_.frames;
+  Stopwatch total;
+  Stopwatch watch;
+  const features::OrbFeatures features = extractor_.Extract(colour, dynamic_mask);
+  timings_.Add("orb_extraction", watch.ElapsedMs());
+  auto frame = std::make_shared<Frame>(
+      Frame::Create(timestamp, features.keypoints, features.descriptors, depth, camera_, pyramid_));
+  watch = Stopwatch();
+  const TrackingResult result = tracker_.Track(frame);
+  timings_.Add("tracking", watch.ElapsedMs());
+  if (result.new_keyframe) {
+    watch = Stopwatch();
+    mapper_.Enqueue(result.reference_keyframe);  // blocks only while the queue is full
+    timings_.Add("keyframe_handover", watch.ElapsedMs());
+  }
+  switch (result.state) {
+    case TrackingState::kOk: {
+      ++counts_.frames_tracked;
+      const auto reference_pose = map_.ResolveCamFromWorld(result.reference_keyframe);
+      DLSLAM_CHECK(reference_pose.has_value(), "reference keyframe {} vanished", result.reference_keyframe);
+      tracked_.push_back({timestamp, result.reference_keyframe, *result.cam_from_world * reference_pose->Inverse()});
+      break;
+    }
+    case TrackingState::kLost: ++counts_.frames_lost; break;
+    case TrackingState::kNotInitialized: ++counts_.frames_waiting; break;
+  }
+  timings_.Add("frame_total", total.ElapsedMs());
+  return result;
+}
+
+void SlamSystem::MarkLost(double /*timestamp*/) {
+  ++counts_.frames;
+  ++counts_.frames_lost;
+}
+
+void SlamSystem::Shutdown() {
+  if (shut_down_) return;
+  mapper_.Stop();
+  shut_down_ = true;
+}
+
+Trajectory SlamSystem::CameraTrajectory() const {
+  Trajectory out;
+  out.reserve(tracked_.size());
+  for (const FrameRecord& r : tracked_) {
+    const auto reference_pose = map_.ResolveCamFromWorld(r.reference);
+    if (!reference_pose) continue;
+    out.emplace_back(r.timestamp, (r.cam_from_reference * *reference_pose).Inverse());
+  }
+  return out;
+}
+
+Trajectory SlamSystem::KeyFrameTrajectory() const {
+  Trajectory out;
+  for (const KeyFramePose& k : map_.KeyFramePoses()) out.emplace_back(k.timestamp, k.cam_from_world.Inverse());
+  return out;
+}
+
+RunStats SlamSystem::Stats() const {
+  RunStats s = counts_;
+  s.keyframes = map_.NumKeyFrames();
+  s.map_points = map_.NumMapPoints();
+  s.mapping = mapper_.stats();
+  s.timing_ms = timings_.Summaries();
+  return s;
+}
+
+}  // namespace dlslam

@@ -1,0 +1,90 @@
+#pragma once
+// The one entry point of the SLAM library: feed RGB-D frames, get poses.
+// Owns the feature extractor, the tracker (on the caller's thread), the map
+// and the local-mapping thread (or runs mapping inline in sequential mode,
+// which is reproducible bit for bit).
+//
+//   SlamSystem slam(camera, options);
+//   for (...) slam.TrackRgbd(bgr, depth_m, t, dynamic_mask);
+//   slam.Shutdown();
+//   io::WriteTumTrajectory("traj.txt", slam.CameraTrajectory());
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "dlslam/data/camera.h"
+#include "dlslam/data/trajectory.h"
+#include "dlslam/features/orb_extractor.h"
+#include "dlslam/map/map.h"
+#include "dlslam/mapping/local_mapper.h"
+#include "dlslam/tracking/tracker.h"
+#include "dlslam/util/timing.h"
+
+namespace dlslam {
+
+struct SystemOptions {
+  features::OrbOptions orb;
+  TrackerOptions tracker;
+  LocalMapperOptions mapping;
+  // Run local mapping inline after each keyframe instead of in its thread.
+  bool sequential = false;
+
+  void Check() const;
+};
+
+struct RunStats {
+  int frames = 0;           // frames given to the system (read or not)
+  int frames_tracked = 0;   // with a pose
+  int frames_lost = 0;      // not tracked after initialisation, or unreadable
+  int frames_waiting = 0;   // before initialisation
+  std::size_t keyframes = 0;
+  std::size_t map_points = 0;
+  LocalMappingStats mapping;
+  std::map<std::string, TimingSummary> timing_ms;  // per stage
+};
+
+class SlamSystem {
+ public:
+  SlamSystem(const CameraIntrinsics& camera, const SystemOptions& options);
+  ~SlamSystem();
+  SlamSystem(const SlamSystem&) = delete;
+  SlamSystem& operator=(const SlamSystem&) = delete;
+
+  // One frame: colour (CV_8UC3 BGR or CV_8UC1), depth (CV_32FC1 metres,
+  // registered to colour, 0 = none; may be empty), and optionally a dynamic
+  // mask (CV_8UC1, non-zero = dynamic) whose pixels give no keypoints.
+  TrackingResult TrackRgbd(const cv::Mat& colour, const cv::Mat& depth, double timestamp,
+                           const cv::Mat& dynamic_mask = cv::Mat());
+  // A frame that could not be read counts as lost.
+  void MarkLost(double timestamp);
+  // Finishes local mapping. Called by the destructor too.
+  void Shutdown();
+
+  // world_from_cam of every tracked frame, from its reference keyframe's
+  // current pose and the relative pose at tracking time (as ORB-SLAM does).
+  Trajectory CameraTrajectory() const;
+  Trajectory KeyFrameTrajectory() const;
+  RunStats Stats() const;
+
+ private:
+  struct FrameRecord {
+    double timestamp = 0.0;
+    KeyFrameId reference = kNoId;
+    SE3d cam_from_reference;
+  };
+
+  CameraIntrinsics camera_;
+  SystemOptions options_;
+  features::OrbExtractor extractor_;
+  ScalePyramid pyramid_;
+  StageTimings timings_;  // before mapper_: the mapping thread writes to it
+  Map map_;
+  Tracker tracker_;
+  LocalMapper mapper_;
+  std::vector<FrameRecord> tracked_;
+  RunStats counts_;
+  bool shut_down_ = false;
+};
+
+}  // namespace dlslam
