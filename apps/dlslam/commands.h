@@ -12,5 +12,6 @@ void AddEvalCommand(CLI::App& app);     // eval.cc: ATE / RPE as the TUM tools
 void AddSynthCommand(CLI::App& app);    // synth.cc: synthetic dynamic RGB-D sequences
 void AddDatasetCommand(CLI::App& app);  // dataset.cc: fetch TUM / Bonn sequences
 void AddInfoCommand(CLI::App& app);     // info.cc: what a sequence folder holds
+void AddRunCommand(CLI::App& app);      // run.cc: SLAM on a sequence
 
 }  // namespace dlslam::app

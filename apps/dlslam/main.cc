@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   spdlog::set_pattern("[%l] %v");
 
   dlslam::app::AddDemoCommand(app);
+  dlslam::app::AddRunCommand(app);
   dlslam::app::AddInfoCommand(app);
   dlslam::app::AddSynthCommand(app);
   dlslam::app::AddEvalCommand(app);
