@@ -18,9 +18,9 @@ struct Candidate {
 
 }  // namespace
 
-std::vector<TimestampPair> AssociateTimestamps(const std::vector<double>& a,
-                                               const std::vector<double>& b, double offset,
-                                               double max_diff) {
+std::vector<IndexPair> AssociateTimestamps(const std::vector<double>& a,
+                                           const std::vector<double>& b, double offset,
+                                           double max_diff) {
   DLSLAM_CHECK(std::isfinite(offset), "association offset {} must be finite", offset);
   DLSLAM_CHECK(std::isfinite(max_diff) && max_diff > 0,
                "association max_diff {} must be positive and finite", max_diff);
@@ -56,14 +56,15 @@ std::vector<TimestampPair> AssociateTimestamps(const std::vector<double>& a,
   });
 
   std::vector<bool> used_a(a.size(), false), used_b(b.size(), false);
-  std::vector<TimestampPair> pairs;
+  std::vector<IndexPair> pairs;
   for (const Candidate& c : candidates) {
     if (used_a[c.i] || used_b[c.j]) continue;
     used_a[c.i] = used_b[c.j] = true;
     pairs.push_back({c.i, c.j});
   }
-  std::sort(pairs.begin(), pairs.end(), [&](const TimestampPair& x, const TimestampPair& y) {
-    return std::tie(a[x.a], b[x.b], x.a, x.b) < std::tie(a[y.a], b[y.b], y.a, y.b);
+  std::sort(pairs.begin(), pairs.end(), [&](const IndexPair& x, const IndexPair& y) {
+    return std::tie(a[x.first], b[x.second], x.first, x.second) <
+           std::tie(a[y.first], b[y.second], y.first, y.second);
   });
   return pairs;
 }

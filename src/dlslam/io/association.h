@@ -12,19 +12,16 @@
 
 namespace dlslam::io {
 
-struct TimestampPair {
-  std::size_t a = 0;  // index into the first list
-  std::size_t b = 0;  // index into the second list
-  bool operator==(const TimestampPair&) const = default;
-};
+// (index into the first list, index into the second list).
+using IndexPair = std::pair<std::size_t, std::size_t>;
 
 // `a`, `b`: timestamps [s], any order, finite. `offset` [s] is added to every
 // b before comparing (associate.py --offset). `max_diff` [s] > 0 is the
 // strict upper bound on the difference (associate.py --max_difference, 0.02).
 // Returns index pairs sorted by (a[i], b[j]). O((n + m) log(n + m) + k log k)
 // for k candidate pairs. Throws dlslam::Error on a non-finite input.
-std::vector<TimestampPair> AssociateTimestamps(const std::vector<double>& a,
-                                               const std::vector<double>& b,
-                                               double offset = 0.0, double max_diff = 0.02);
+std::vector<IndexPair> AssociateTimestamps(const std::vector<double>& a,
+                                           const std::vector<double>& b, double offset = 0.0,
+                                           double max_diff = 0.02);
 
 }  // namespace dlslam::io

@@ -17,8 +17,8 @@ namespace {
 
 // The rule as associate.py states it, quadratic and literal: every pair,
 // sorted by (diff, a, b), taken greedily, then sorted by (a, b).
-std::vector<TimestampPair> BruteForce(const std::vector<double>& a, const std::vector<double>& b,
-                                      double offset, double max_diff) {
+std::vector<IndexPair> BruteForce(const std::vector<double>& a, const std::vector<double>& b,
+                                  double offset, double max_diff) {
   std::vector<std::tuple<double, double, double, std::size_t, std::size_t>> all;
   for (std::size_t i = 0; i < a.size(); ++i) {
     for (std::size_t j = 0; j < b.size(); ++j) {
@@ -35,7 +35,7 @@ std::vector<TimestampPair> BruteForce(const std::vector<double>& a, const std::v
     taken.emplace_back(ta, tb, i, j);
   }
   std::sort(taken.begin(), taken.end());
-  std::vector<TimestampPair> pairs;
+  std::vector<IndexPair> pairs;
   for (const auto& t : taken) pairs.push_back({std::get<2>(t), std::get<3>(t)});
   return pairs;
 }
@@ -47,14 +47,14 @@ TEST(AssociateTimestamps, NearestWinsAndEachTimestampIsUsedOnce) {
   const std::vector<double> depth = {0.104, 0.118, 0.9};
   const auto pairs = AssociateTimestamps(rgb, depth);
   ASSERT_EQ(pairs.size(), 2u);
-  EXPECT_EQ(pairs[0], (TimestampPair{0, 0}));
-  EXPECT_EQ(pairs[1], (TimestampPair{1, 1}));
+  EXPECT_EQ(pairs[0], (IndexPair{0, 0}));
+  EXPECT_EQ(pairs[1], (IndexPair{1, 1}));
 }
 
 TEST(AssociateTimestamps, EqualDifferencesGoToTheEarlierTimestamp) {
   const auto pairs = AssociateTimestamps({0.0, 0.5}, {0.25}, 0.0, 0.3);
   ASSERT_EQ(pairs.size(), 1u);
-  EXPECT_EQ(pairs[0], (TimestampPair{0, 0}));
+  EXPECT_EQ(pairs[0], (IndexPair{0, 0}));
 }
 
 TEST(AssociateTimestamps, MaxDiffIsStrictAndOffsetShiftsTheSecondList) {
@@ -67,9 +67,9 @@ TEST(AssociateTimestamps, MaxDiffIsStrictAndOffsetShiftsTheSecondList) {
 TEST(AssociateTimestamps, ResultIsSortedByTimeForUnsortedInput) {
   const auto pairs = AssociateTimestamps({3.0, 1.0, 2.0}, {2.001, 0.999, 3.002});
   ASSERT_EQ(pairs.size(), 3u);
-  EXPECT_EQ(pairs[0], (TimestampPair{1, 1}));
-  EXPECT_EQ(pairs[1], (TimestampPair{2, 0}));
-  EXPECT_EQ(pairs[2], (TimestampPair{0, 2}));
+  EXPECT_EQ(pairs[0], (IndexPair{1, 1}));
+  EXPECT_EQ(pairs[1], (IndexPair{2, 0}));
+  EXPECT_EQ(pairs[2], (IndexPair{0, 2}));
 }
 
 TEST(AssociateTimestamps, MatchesTheQuadraticRuleOnRandomLists) {
@@ -79,7 +79,8 @@ TEST(AssociateTimestamps, MatchesTheQuadraticRuleOnRandomLists) {
     const double step = (trial % 3 == 0) ? 0.005 : 0.0001;
     std::uniform_int_distribution<int> count(0, 60), tick(0, static_cast<int>(2.0 / step));
     const double base = (trial % 2 == 0) ? 0.0 : 1341846313.0;
-    std::vector<double> a(static_cast<std::size_t>(count(rng))), b(static_cast<std::size_t>(count(rng)));
+    std::vector<double> a(static_cast<std::size_t>(count(rng))),
+        b(static_cast<std::size_t>(count(rng)));
     for (double& t : a) t = base + tick(rng) * step;
     for (double& t : b) t = base + tick(rng) * step;
     const double offset = (trial % 5 == 0) ? 0.01 : 0.0;
@@ -111,7 +112,7 @@ TEST(AssociateTimestamps, ReproducesTumAssociationFiles) {
     const auto associated = AssociateTimestamps(rgb, depth);
     ASSERT_EQ(associated.size(), pairs.size()) << entry.path();
     for (std::size_t k = 0; k < associated.size(); ++k) {
-      ASSERT_EQ(associated[k], (TimestampPair{k, k})) << entry.path() << " pair " << k;
+      ASSERT_EQ(associated[k], (IndexPair{k, k})) << entry.path() << " pair " << k;
     }
     ++files;
   }
