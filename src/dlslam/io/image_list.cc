@@ -1,6 +1,8 @@
 #include "dlslam/io/image_list.h"
 
-#include <regex>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
 
 #include "dlslam/io/text_table.h"
 #include "dlslam/util/check.h"
@@ -11,7 +13,8 @@ namespace {
 ListedImage ParseImage(const TextRow& row, std::size_t first, const std::filesystem::path& path,
                        const char* what) {
   ListedImage image;
-  image.timestamp = ParseDouble(row.fields[first], path, row.line, std::string(what) + " timestamp");
+  image.timestamp =
+      ParseDouble(row.fields[first], path, row.line, std::string(what) + " timestamp");
   image.path = row.fields[first + 1];
   image.list_file = path;
   image.line = row.line;
@@ -63,13 +66,20 @@ std::vector<AssociatedImages> ReadAssociationFile(const std::filesystem::path& p
 }
 
 std::optional<double> DepthFactorFromComments(const std::vector<std::string>& comments) {
-  static const std::regex pattern(R"((depth[ _]?(map)?[ _]?factor)\s*[:=]?\s*([0-9]+(\.[0-9]*)?))",
-                                  std::regex::icase);
+  static const char* const kKeys[] = {"depth factor", "depth_factor", "depthmapfactor",
+                                      "depth map factor", "depth_map_factor"};
   for (const std::string& comment : comments) {
-    std::smatch match;
-    if (std::regex_search(comment, match, pattern)) {
-      const double factor = std::stod(match[3].str());
-      if (factor > 0) return factor;
+    std::string text = comment;
+    for (char& ch : text) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    for (const std::string key : kKeys) {
+      for (auto pos = text.find(key); pos != std::string::npos; pos = text.find(key, pos + 1)) {
+        const auto value = text.find_first_not_of(" \t:=", pos + key.size());
+        if (value == std::string::npos) continue;
+        const char* begin = text.c_str() + value;
+        char* end = nullptr;
+        const double factor = std::strtod(begin, &end);
+        if (end != begin && std::isfinite(factor) && factor > 0) return factor;
+      }
     }
   }
   return std::nullopt;

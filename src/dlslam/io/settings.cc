@@ -1,11 +1,9 @@
 #include "dlslam/io/settings.h"
 
-#include <opencv2/core.hpp>
-
 #include <cmath>
 #include <fstream>
+#include <opencv2/core.hpp>
 #include <optional>
-#include <regex>
 #include <string>
 
 #include "dlslam/io/file_util.h"
@@ -43,15 +41,20 @@ class SettingsFile {
     try {
       storage_.open(path.string(), cv::FileStorage::READ | cv::FileStorage::FORMAT_YAML);
     } catch (const cv::Exception& e) {
-      // OpenCV 4.6's parser puts "<file>(<line>): <problem>" in e.func, and
-      // the parser's function name in e.err.
-      static const std::regex located(R"(\((\d+)\): (.*))");
-      std::smatch m;
-      const std::string where = e.func;
-      const bool has_line = std::regex_search(where, m, located);
-      throw InputError(path, has_line ? std::stoi(m[1].str()) : 0,
-                       "malformed settings file (OpenCV YAML, '%YAML:1.0' first): {}",
-                       has_line ? m[2].str() : e.err);
+      // OpenCV 4.6's parser puts "<file>(<line>): <problem>" in e.func and
+      // its own function name in e.err; other failures only have e.err.
+      int line = 0;
+      std::string problem = e.err;
+      const std::string& where = e.func;
+      const auto close = where.find("): ");
+      const auto open = close == std::string::npos ? close : where.rfind('(', close);
+      if (open != std::string::npos && close > open + 1 &&
+          where.find_first_not_of("0123456789", open + 1) == close) {
+        line = std::stoi(where.substr(open + 1, close - open - 1));
+        problem = where.substr(close + 3);
+      }
+      throw InputError(path, line, "malformed settings file (OpenCV YAML, '%YAML:1.0' first): {}",
+                       problem);
     }
     if (!storage_.isOpened()) {
       throw InputError(path, 0, "cannot read as an OpenCV YAML settings file");

@@ -118,7 +118,8 @@ TEST_F(SettingsTest, SizeAndDepthFactorAreOptional) {
   auto path = WriteOldLayoutWith("Camera.width", "");
   EXPECT_THAT(ErrorOf(path), HasSubstr("missing required key 'Camera.width'"));
   std::string text = kOldLayout;
-  for (const char* key : {"Camera.width: 640\n", "Camera.height: 480\n", "DepthMapFactor: 5000.0\n"}) {
+  for (const char* key :
+       {"Camera.width: 640\n", "Camera.height: 480\n", "DepthMapFactor: 5000.0\n"}) {
     text.erase(text.find(key), std::string(key).size());
   }
   const CameraSettings s = ReadSettingsFile(Write("orbslam2.yaml", text));
@@ -197,8 +198,10 @@ TEST_F(SettingsTest, ImplausibleValuesAreRejected) {
 TEST_F(SettingsTest, MalformedFilesAreInputErrors) {
   EXPECT_THAT(ErrorOf(dir_ / "none.yaml"), HasSubstr("settings file not found"));
   EXPECT_THAT(ErrorOf(Write("empty.yaml", "")), HasSubstr("empty settings file"));
-  const std::string broken = ErrorOf(Write("broken.yaml", "%YAML:1.0\nCamera.fx: [535.4\nCamera.fy: {\n"));
-  EXPECT_THAT(broken, HasSubstr("broken.yaml"));
+  const std::string broken =
+      ErrorOf(Write("broken.yaml", "%YAML:1.0\nCamera.fx: [535.4\nCamera.fy: {\n"));
+  // The list opened on line 2 is still open when line 3 starts a new key.
+  EXPECT_THAT(broken, HasSubstr("broken.yaml:3:"));
   EXPECT_THAT(broken, HasSubstr("malformed settings file"));
   const std::string text = ErrorOf(Write("text.yaml", "just some text\nnot yaml: [\n"));
   EXPECT_THAT(text, HasSubstr("text.yaml"));
