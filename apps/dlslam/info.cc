@@ -67,10 +67,11 @@ void PrintGroundTruth(const io::RgbdSequence& seq, double max_diff) {
   for (const auto& f : seq.frames()) frame_times.push_back(f.timestamp());
   for (const auto& p : gt) gt_times.push_back(p.timestamp);
   const auto matched = io::AssociateTimestamps(frame_times, gt_times, 0.0, max_diff);
-  fmt::print("ground truth  {} poses, {:.6f} .. {:.6f} ({:.3f} s); {} of {} frames have a pose "
-             "within {} s\n",
-             gt.size(), gt.front().timestamp, gt.back().timestamp,
-             gt.back().timestamp - gt.front().timestamp, matched.size(), seq.size(), max_diff);
+  fmt::print(
+      "ground truth  {} poses, {:.6f} .. {:.6f} ({:.3f} s); {} of {} frames have a pose "
+      "within {} s\n",
+      gt.size(), gt.front().timestamp, gt.back().timestamp,
+      gt.back().timestamp - gt.front().timestamp, matched.size(), seq.size(), max_diff);
 }
 
 void PrintFrame(const io::RgbdFrame& frame) {
@@ -130,17 +131,20 @@ void RunInfo(InfoArgs args) {
 void AddInfoCommand(CLI::App& app) {
   auto args = std::make_shared<InfoArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "info", "What an RGB-D sequence folder (TUM layout) holds: frames, association, camera, "
-              "depth factor, ground truth; reads the first frame");
-  cmd->add_option("--sequence", args->sequence, "Sequence folder (rgb.txt, depth.txt, rgb/, depth/)")
+      "info",
+      "What an RGB-D sequence folder (TUM layout) holds: frames, association, camera, "
+      "depth factor, ground truth; reads the first frame");
+  cmd->add_option("--sequence", args->sequence,
+                  "Sequence folder (rgb.txt, depth.txt, rgb/, depth/)")
       ->required();
   cmd->add_option("--camera", args->options.camera_preset,
                   "Camera preset: fr1, fr2, fr3 (freiburg1..3), bonn");
   cmd->add_option("--settings", args->settings, "Camera settings file (ORB-SLAM3 YAML)");
   cmd->add_option("--depth-factor", args->options.depth_factor,
                   "Raw depth units per metre (TUM/Bonn 5000, millimetres 1000)");
-  cmd->add_option("--associations", args->associations,
-                  "Association file 't_rgb rgb/x.png t_depth depth/y.png' instead of rgb.txt/depth.txt");
+  cmd->add_option(
+      "--associations", args->associations,
+      "Association file 't_rgb rgb/x.png t_depth depth/y.png' instead of rgb.txt/depth.txt");
   cmd->add_option("--max-diff", args->options.max_association_diff,
                   "Largest RGB/depth time difference in seconds")
       ->capture_default_str();

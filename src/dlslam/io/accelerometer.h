@@ -3,7 +3,6 @@
 // line [s, m/s^2], '#' comments (Kinect accelerometer, sensor frame).
 
 #include <Eigen/Core>
-
 #include <filesystem>
 #include <vector>
 

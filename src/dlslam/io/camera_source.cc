@@ -33,7 +33,8 @@ CameraIntrinsics ReadIntrinsicsMatrix(const std::filesystem::path& path) {
     if (row.fields.size() != 3) {
       throw InputError(path, row.line, "expected 3 numbers, got {}", row.fields.size());
     }
-    for (std::size_t c = 0; c < 3; ++c) k[r][c] = ParseDouble(row.fields[c], path, row.line, "value");
+    for (std::size_t c = 0; c < 3; ++c)
+      k[r][c] = ParseDouble(row.fields[c], path, row.line, "value");
   }
   const bool pinhole = k[0][1] == 0 && k[1][0] == 0 && k[2][0] == 0 && k[2][1] == 0 &&
                        k[2][2] == 1 && k[0][0] > 0 && k[1][1] > 0;
@@ -71,7 +72,8 @@ CameraChoice ResolveCamera(const std::filesystem::path& folder, const CameraHint
   const auto intrinsics_file = folder / kIntrinsicsMatrixName;
   if (!hints.settings_file.empty()) {
     settings = ReadSettingsFile(hints.settings_file);
-    choice.camera_source = fmt::format("settings file '{}' (--settings)", hints.settings_file.string());
+    choice.camera_source =
+        fmt::format("settings file '{}' (--settings)", hints.settings_file.string());
   } else if (!hints.preset.empty()) {
     try {
       choice.camera = CameraPreset(hints.preset);
@@ -88,8 +90,8 @@ CameraChoice ResolveCamera(const std::filesystem::path& folder, const CameraHint
     choice.camera_source = fmt::format("'{}' in the folder (no distortion)", kIntrinsicsMatrixName);
   } else if (const auto preset = PresetFromFolderName(folder)) {
     choice.camera = CameraPreset(*preset);
-    choice.camera_source = fmt::format("preset '{}' from the folder name '{}'", *preset,
-                                       FolderName(folder));
+    choice.camera_source =
+        fmt::format("preset '{}' from the folder name '{}'", *preset, FolderName(folder));
     has_size = true;
   } else {
     throw InputError(folder, 0,
@@ -111,7 +113,8 @@ CameraChoice ResolveCamera(const std::filesystem::path& folder, const CameraHint
 
   const double default_factor = 5000.0;
   if (hints.depth_factor > 0) {
-    if (settings && settings->has_depth_factor && settings->camera.depth_factor != hints.depth_factor) {
+    if (settings && settings->has_depth_factor &&
+        settings->camera.depth_factor != hints.depth_factor) {
       spdlog::warn("--depth-factor {} overrides DepthMapFactor {} of the settings file",
                    hints.depth_factor, settings->camera.depth_factor);
     }

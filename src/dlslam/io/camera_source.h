@@ -9,10 +9,9 @@
 //   depth factor: --depth-factor; DepthMapFactor of the settings file; a
 //           "depth factor N" comment in depth.txt; else 5000 (TUM, Bonn).
 
-#include <opencv2/core.hpp>
-
 #include <filesystem>
 #include <functional>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 
@@ -21,11 +20,11 @@
 namespace dlslam::io {
 
 struct CameraHints {
-  std::string preset;                           // "" = none
-  std::filesystem::path settings_file;          // "" = none
-  double depth_factor = 0.0;                    // raw units per metre; 0 = none
-  std::optional<double> depth_factor_comment;   // found in the depth list's comments
-  std::filesystem::path depth_list;             // where that comment was (for messages)
+  std::string preset;                          // "" = none
+  std::filesystem::path settings_file;         // "" = none
+  double depth_factor = 0.0;                   // raw units per metre; 0 = none
+  std::optional<double> depth_factor_comment;  // found in the depth list's comments
+  std::filesystem::path depth_list;            // where that comment was (for messages)
 };
 
 struct CameraChoice {

@@ -3,9 +3,8 @@
 // the image and the list file:line that referenced it:
 //   "/seq/depth.txt:57: depth image '/seq/depth/1.2.png': 8-bit image, expected 16-bit"
 
-#include <opencv2/core.hpp>
-
 #include <filesystem>
+#include <opencv2/core.hpp>
 
 namespace dlslam::io {
 

@@ -13,10 +13,10 @@ namespace dlslam::io {
 
 // One image named by a list file, with where it was named (for errors).
 struct ListedImage {
-  double timestamp = 0.0;              // [s]
-  std::filesystem::path path;          // as written: relative to the sequence folder
-  std::filesystem::path list_file;     // the list that named it
-  int line = 0;                        // 1-based line in list_file
+  double timestamp = 0.0;           // [s]
+  std::filesystem::path path;       // as written: relative to the sequence folder
+  std::filesystem::path list_file;  // the list that named it
+  int line = 0;                     // 1-based line in list_file
 };
 
 struct ImageList {

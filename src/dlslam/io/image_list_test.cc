@@ -54,25 +54,30 @@ TEST_F(ImageListTest, BadListsNameFileAndLine) {
   EXPECT_THAT(ErrorOf([&] { ReadImageList(malformed); }),
               HasSubstr("a.txt:3: expected 'timestamp path', got 3 fields"));
   const auto not_number = Write("b.txt", "1.0 rgb/1.png\n1.0x rgb/2.png\n");
-  EXPECT_THAT(ErrorOf([&] { ReadImageList(not_number); }), HasSubstr("b.txt:2: image timestamp '1.0x'"));
+  EXPECT_THAT(ErrorOf([&] { ReadImageList(not_number); }),
+              HasSubstr("b.txt:2: image timestamp '1.0x'"));
   const auto backwards = Write("c.txt", "1.0 rgb/1.png\n2.0 rgb/2.png\n1.5 rgb/3.png\n");
-  EXPECT_THAT(ErrorOf([&] { ReadImageList(backwards); }), HasSubstr("c.txt:3: image timestamp 1.500000"));
+  EXPECT_THAT(ErrorOf([&] { ReadImageList(backwards); }),
+              HasSubstr("c.txt:3: image timestamp 1.500000"));
   const auto duplicate = Write("d.txt", "1.0 rgb/1.png\n1.0 rgb/2.png\n");
   EXPECT_THAT(ErrorOf([&] { ReadImageList(duplicate); }), HasSubstr("d.txt:2:"));
   EXPECT_THAT(ErrorOf([&] { ReadImageList(dir_ / "missing.txt"); }), HasSubstr("file not found"));
 }
 
 TEST_F(ImageListTest, ReadsAssociationFilesAndRejectsBadOnes) {
-  const auto good = Write("assoc.txt", "1.0 rgb/1.png 1.01 depth/1.png\n2.0 rgb/2.png 1.99 depth/2.png\n");
+  const auto good =
+      Write("assoc.txt", "1.0 rgb/1.png 1.01 depth/1.png\n2.0 rgb/2.png 1.99 depth/2.png\n");
   const auto pairs = ReadAssociationFile(good);
   ASSERT_EQ(pairs.size(), 2u);
   EXPECT_DOUBLE_EQ(pairs[1].depth.timestamp, 1.99);
   EXPECT_EQ(pairs[1].depth.path, "depth/2.png");
   EXPECT_EQ(pairs[1].rgb.line, 2);
   const auto three = Write("bad.txt", "1.0 rgb/1.png 1.01\n");
-  EXPECT_THAT(ErrorOf([&] { ReadAssociationFile(three); }), HasSubstr("bad.txt:1: expected 't_rgb"));
+  EXPECT_THAT(ErrorOf([&] { ReadAssociationFile(three); }),
+              HasSubstr("bad.txt:1: expected 't_rgb"));
   const auto depth_nan = Write("nan.txt", "1.0 rgb/1.png nan depth/1.png\n");
-  EXPECT_THAT(ErrorOf([&] { ReadAssociationFile(depth_nan); }), HasSubstr("nan.txt:1: depth timestamp"));
+  EXPECT_THAT(ErrorOf([&] { ReadAssociationFile(depth_nan); }),
+              HasSubstr("nan.txt:1: depth timestamp"));
 }
 
 TEST_F(ImageListTest, ReadsRealAssociationFiles) {

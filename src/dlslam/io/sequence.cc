@@ -58,7 +58,8 @@ RgbdSequence RgbdSequence::Open(const std::filesystem::path& folder,
     }
     // Only the comments matter here; the lines are not checked.
     if (std::filesystem::exists(hints.depth_list)) {
-      hints.depth_factor_comment = DepthFactorFromComments(ReadTextTable(hints.depth_list).comments);
+      hints.depth_factor_comment =
+          DepthFactorFromComments(ReadTextTable(hints.depth_list).comments);
     }
   } else {
     ImageList rgb = ReadRequiredList(folder, "rgb.txt");
@@ -67,9 +68,9 @@ RgbdSequence RgbdSequence::Open(const std::filesystem::path& folder,
     std::vector<double> rgb_times, depth_times;
     for (const ListedImage& image : rgb.images) rgb_times.push_back(image.timestamp);
     for (const ListedImage& image : depth.images) depth_times.push_back(image.timestamp);
-    for (const TimestampPair& p :
+    for (const IndexPair& p :
          AssociateTimestamps(rgb_times, depth_times, 0.0, options.max_association_diff)) {
-      seq.frames_.push_back({rgb.images[p.a], depth.images[p.b]});
+      seq.frames_.push_back({rgb.images[p.first], depth.images[p.second]});
     }
     seq.rgb_list_ = std::move(rgb.images);
     seq.depth_list_ = std::move(depth.images);
@@ -80,9 +81,8 @@ RgbdSequence RgbdSequence::Open(const std::filesystem::path& folder,
                      options.max_association_diff);
   }
 
-  const CameraChoice choice = ResolveCamera(folder, hints, [&] {
-    return ReadImageSize(SourceOf(folder, seq.frames_.front().rgb));
-  });
+  const CameraChoice choice = ResolveCamera(
+      folder, hints, [&] { return ReadImageSize(SourceOf(folder, seq.frames_.front().rgb)); });
   seq.camera_ = choice.camera;
   seq.camera_source_ = choice.camera_source;
   seq.depth_factor_source_ = choice.depth_factor_source;
@@ -109,8 +109,8 @@ RgbdFrame RgbdSequence::LoadFrame(std::size_t i) const {
   frame.timestamp = info.rgb.timestamp;
   frame.depth_timestamp = info.depth.timestamp;
   frame.color = ReadColorImage(SourceOf(folder_, info.rgb), camera_.width, camera_.height);
-  frame.depth = ReadDepthImage(SourceOf(folder_, info.depth), camera_.depth_factor,
-                               camera_.width, camera_.height);
+  frame.depth = ReadDepthImage(SourceOf(folder_, info.depth), camera_.depth_factor, camera_.width,
+                               camera_.height);
   return frame;
 }
 

@@ -9,9 +9,8 @@
 // Opening reads the lists and resolves the camera; images are read per frame,
 // so a bad image fails only its own frame (TryLoadFrame).
 
-#include <opencv2/core.hpp>
-
 #include <filesystem>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 #include <vector>

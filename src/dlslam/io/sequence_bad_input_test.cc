@@ -47,11 +47,14 @@ TEST(SequenceBadInput, MalformedListLines) {
   SequenceFolder folder;
   folder.WriteValidSequence(3);
   folder.WriteText("rgb.txt", "# c\n1000.0 rgb/0.png\n1000.033333rgb/1.png\n");
-  EXPECT_THAT(OpenError(folder.dir()), HasSubstr("rgb.txt:3: expected 'timestamp path', got 1 fields"));
+  EXPECT_THAT(OpenError(folder.dir()),
+              HasSubstr("rgb.txt:3: expected 'timestamp path', got 1 fields"));
   folder.WriteText("rgb.txt", "1000.0 rgb/0.png\nabc rgb/1.png\n");
-  EXPECT_THAT(OpenError(folder.dir()), HasSubstr("rgb.txt:2: image timestamp 'abc' is not a finite number"));
+  EXPECT_THAT(OpenError(folder.dir()),
+              HasSubstr("rgb.txt:2: image timestamp 'abc' is not a finite number"));
   folder.WriteText("rgb.txt", "1000.0 rgb/0.png\n1000.1 rgb/1.png\n1000.05 rgb/2.png\n");
-  EXPECT_THAT(OpenError(folder.dir()), HasSubstr("rgb.txt:3: image timestamp 1000.050000 is not larger"));
+  EXPECT_THAT(OpenError(folder.dir()),
+              HasSubstr("rgb.txt:3: image timestamp 1000.050000 is not larger"));
 }
 
 TEST(SequenceBadInput, NoAssociatedFrames) {
@@ -78,8 +81,8 @@ TEST(SequenceBadInput, EightBitDepth) {
   SequenceFolder folder;
   folder.WriteValidSequence(2);
   cv::imwrite((folder.dir() / "depth/1.png").string(), cv::Mat(48, 64, CV_8UC1, cv::Scalar(7)));
-  EXPECT_THAT(FrameError(folder, 1),
-              AllOf(HasSubstr("depth.txt:4: depth image"), HasSubstr("depth/1.png"), HasSubstr("8-bit")));
+  EXPECT_THAT(FrameError(folder, 1), AllOf(HasSubstr("depth.txt:4: depth image"),
+                                           HasSubstr("depth/1.png"), HasSubstr("8-bit")));
 }
 
 TEST(SequenceBadInput, WrongImageSize) {
@@ -87,7 +90,9 @@ TEST(SequenceBadInput, WrongImageSize) {
   folder.WriteValidSequence(3);
   folder.WriteColor("rgb/1.png", {32, 48});
   folder.WriteDepth("depth/2.png", {64, 24}, 5000);
-  EXPECT_THAT(FrameError(folder, 1), AllOf(HasSubstr("rgb/1.png"), HasSubstr("size 32x48 differs from the camera's 64x48")));
+  EXPECT_THAT(
+      FrameError(folder, 1),
+      AllOf(HasSubstr("rgb/1.png"), HasSubstr("size 32x48 differs from the camera's 64x48")));
   EXPECT_THAT(FrameError(folder, 2), AllOf(HasSubstr("depth/2.png"), HasSubstr("size 64x24")));
 }
 
@@ -95,7 +100,8 @@ TEST(SequenceBadInput, EmptyAndCorruptImageFiles) {
   SequenceFolder folder;
   folder.WriteValidSequence(3);
   folder.WriteText("depth/1.png", "");
-  EXPECT_THAT(FrameError(folder, 1), AllOf(HasSubstr("depth/1.png"), HasSubstr("empty file (0 bytes)")));
+  EXPECT_THAT(FrameError(folder, 1),
+              AllOf(HasSubstr("depth/1.png"), HasSubstr("empty file (0 bytes)")));
   // A PNG signature followed by garbage.
   folder.WriteText("rgb/2.png", std::string("\x89PNG\r\n\x1a\n", 8) + "this is not image data");
   EXPECT_THAT(FrameError(folder, 2), AllOf(HasSubstr("rgb.txt:5"), HasSubstr("cannot decode")));
@@ -123,8 +129,8 @@ TEST(SequenceBadInput, UnknownCamera) {
   SequenceFolder folder("recording_2024");
   folder.WriteValidSequence(2);
   std::filesystem::remove(folder.dir() / "camera.yaml");
-  EXPECT_THAT(OpenError(folder.dir()), AllOf(HasSubstr("recording_2024"), HasSubstr("--camera"),
-                                             HasSubstr("camera.yaml")));
+  EXPECT_THAT(OpenError(folder.dir()),
+              AllOf(HasSubstr("recording_2024"), HasSubstr("--camera"), HasSubstr("camera.yaml")));
   RgbdSequenceOptions options;
   options.camera_preset = "kinect7";
   EXPECT_THAT(OpenError(folder.dir(), options), HasSubstr("unknown camera preset 'kinect7'"));
@@ -139,7 +145,8 @@ TEST(SequenceBadInput, MalformedSettings) {
   folder.WriteValidSequence(2);
   folder.WriteText("camera.yaml", "%YAML:1.0\nCamera.fx: [1,\n  Camera.fy: }\n");
   EXPECT_THAT(OpenError(folder.dir()), AllOf(HasSubstr("camera.yaml"), HasSubstr("malformed")));
-  folder.WriteText("other.yaml", "%YAML:1.0\nCamera.fx: 500.0\nCamera.fy: 500.0\nCamera.cx: 32.0\n");
+  folder.WriteText("other.yaml",
+                   "%YAML:1.0\nCamera.fx: 500.0\nCamera.fy: 500.0\nCamera.cx: 32.0\n");
   RgbdSequenceOptions options;
   options.settings_file = folder.dir() / "other.yaml";
   EXPECT_THAT(OpenError(folder.dir(), options),

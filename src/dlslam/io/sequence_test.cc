@@ -3,9 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include <algorithm>
+#include <opencv2/imgcodecs.hpp>
 
 #include "dlslam/io/sequence_test_folder.h"
 #include "dlslam/util/check.h"
@@ -27,7 +26,8 @@ std::pair<double, double> DepthStats(const cv::Mat& depth) {
   }
   if (valid.empty()) return {0.0, 0.0};
   std::nth_element(valid.begin(), valid.begin() + static_cast<long>(valid.size() / 2), valid.end());
-  return {valid[valid.size() / 2], static_cast<double>(valid.size()) / static_cast<double>(depth.total())};
+  return {valid[valid.size() / 2],
+          static_cast<double>(valid.size()) / static_cast<double>(depth.total())};
 }
 
 TEST(RgbdSequence, ReadsAConstructedSequence) {
@@ -65,8 +65,11 @@ TEST(RgbdSequence, UnmatchedImagesAreLeftOutAndCounted) {
   folder.WriteValidSequence(3);
   // A depth image 25 ms after frame 1's colour: beyond 0.02 s, so frame 1 has
   // no depth; an extra colour image with no depth at all.
-  folder.WriteText("depth.txt", "1000.002 depth/0.png\n1000.058333 depth/1.png\n1000.068667 depth/2.png\n");
-  folder.WriteText("rgb.txt", "1000.0 rgb/0.png\n1000.033333 rgb/1.png\n1000.066667 rgb/2.png\n1005.0 rgb/2.png\n");
+  folder.WriteText("depth.txt",
+                   "1000.002 depth/0.png\n1000.058333 depth/1.png\n1000.068667 depth/2.png\n");
+  folder.WriteText(
+      "rgb.txt",
+      "1000.0 rgb/0.png\n1000.033333 rgb/1.png\n1000.066667 rgb/2.png\n1005.0 rgb/2.png\n");
   const RgbdSequence seq = RgbdSequence::Open(folder.dir());
   EXPECT_EQ(seq.rgb_list().size(), 4u);
   EXPECT_EQ(seq.depth_list().size(), 3u);
@@ -106,11 +109,13 @@ TEST(RgbdSequence, ReadsRealTumFrames) {
   for (const auto& entry : std::filesystem::directory_iterator(sample / "depth")) {
     std::filesystem::create_symlink(entry.path(), folder.dir() / "depth" / entry.path().filename());
   }
-  folder.WriteText("rgb.txt", rgb + "1341846313.592026 rgb/1341846313.592026.png\n"
-                                    "1341846316.570121 rgb/1341846316.570121.png\n"
-                                    "1341846325.417931 rgb/1341846325.417931.png\n");
-  folder.WriteText("depth.txt", depth + "1341846313.592088 depth/1341846313.592088.png\n"
-                                        "1341846316.570146 depth/1341846316.570146.png\n");
+  folder.WriteText("rgb.txt", rgb +
+                                  "1341846313.592026 rgb/1341846313.592026.png\n"
+                                  "1341846316.570121 rgb/1341846316.570121.png\n"
+                                  "1341846325.417931 rgb/1341846325.417931.png\n");
+  folder.WriteText("depth.txt", depth +
+                                    "1341846313.592088 depth/1341846313.592088.png\n"
+                                    "1341846316.570146 depth/1341846316.570146.png\n");
   const RgbdSequence seq = RgbdSequence::Open(folder.dir());
   EXPECT_EQ(seq.camera().name, "freiburg3");
   EXPECT_THAT(seq.camera_source(), HasSubstr("folder name"));
@@ -121,7 +126,8 @@ TEST(RgbdSequence, ReadsRealTumFrames) {
 
   const RgbdFrame frame = seq.LoadFrame(0);
   EXPECT_EQ(frame.color.size(), cv::Size(640, 480));
-  const cv::Mat raw = cv::imread((sample / "depth/1341846313.592088.png").string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat raw =
+      cv::imread((sample / "depth/1341846313.592088.png").string(), cv::IMREAD_UNCHANGED);
   ASSERT_EQ(raw.type(), CV_16UC1);
   EXPECT_FLOAT_EQ(frame.depth.at<float>(240, 320), raw.at<uint16_t>(240, 320) / 5000.0f);
   const auto [median, valid] = DepthStats(frame.depth);

@@ -2,11 +2,11 @@
 // Test helper: small TUM-layout sequence folders built in a temp directory.
 
 #include <fmt/format.h>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include <filesystem>
 #include <fstream>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 
 #include "dlslam/io/settings.h"
