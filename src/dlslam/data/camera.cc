@@ -40,10 +40,12 @@ CameraIntrinsics CameraPreset(const std::string& name) {
     c.name = "freiburg3";
     c.fx = 535.4; c.fy = 539.2; c.cx = 320.1; c.cy = 247.6;
   } else if (name == "bonn") {
-    // Bonn RGB-D Dynamic dataset (PRBonn), intrinsics from its web page; its
-    // depth PNGs use the TUM factor 5000 and its colour images are undistorted.
+    // Bonn RGB-D Dynamic dataset (PRBonn), intrinsics and distortion d0..d4
+    // (OpenCV order) from its web page; its depth PNGs use the TUM factor 5000.
+    // Unlike freiburg3 its colour images are not undistorted.
     c.name = "bonn";
     c.fx = 542.822841; c.fy = 542.576870; c.cx = 315.593520; c.cy = 237.756098;
+    c.k1 = 0.039903; c.k2 = -0.099343; c.p1 = -0.000730; c.p2 = -0.000144; c.k3 = 0.0;
   } else {
     throw Error("unknown camera preset '" + name +
                 "' (known: freiburg1, freiburg2, freiburg3, fr1, fr2, fr3, bonn)");

@@ -26,6 +26,18 @@ TEST(Camera, PresetsMatchPublishedTumValues) {
   EXPECT_NO_THROW(fr3.Check());
 }
 
+TEST(Camera, BonnPresetMatchesItsWebPage) {
+  // ipb.uni-bonn.de/data/rgbd-dynamic-dataset: fx fy cx cy and d0..d4.
+  const CameraIntrinsics bonn = CameraPreset("bonn");
+  EXPECT_DOUBLE_EQ(bonn.fx, 542.822841);
+  EXPECT_DOUBLE_EQ(bonn.cy, 237.756098);
+  EXPECT_DOUBLE_EQ(bonn.k1, 0.039903);
+  EXPECT_DOUBLE_EQ(bonn.k2, -0.099343);
+  EXPECT_DOUBLE_EQ(bonn.p1, -0.000730);
+  EXPECT_DOUBLE_EQ(bonn.p2, -0.000144);
+  EXPECT_DOUBLE_EQ(bonn.depth_factor, 5000.0);
+}
+
 TEST(Camera, UnknownPresetIsAnError) { EXPECT_THROW(CameraPreset("freiburg9"), Error); }
 
 TEST(Camera, CheckRejectsNonsense) {

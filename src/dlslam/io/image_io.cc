@@ -1,0 +1,103 @@
+#include "dlslam/io/image_io.h"
+
+#include <fstream>
+#include <iterator>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "dlslam/util/check.h"
+
+namespace dlslam::io {
+namespace {
+
+[[noreturn]] void Fail(const ImageSource& source, const char* kind, const std::string& problem) {
+  throw InputError(source.list_file.empty() ? source.image : source.list_file, source.line,
+                   "{} image '{}': {}", kind, source.image.string(), problem);
+}
+
+// Reads the bytes ourselves so that a missing, unreadable and empty file each
+// get their own message (cv::imread reports all three as an empty Mat).
+cv::Mat Decode(const ImageSource& source, const char* kind, int flags) {
+  std::error_code ec;
+  if (!std::filesystem::exists(source.image, ec)) Fail(source, kind, "file not found");
+  if (std::filesystem::is_directory(source.image, ec)) Fail(source, kind, "is a directory");
+  std::ifstream in(source.image, std::ios::binary);
+  if (!in) Fail(source, kind, "cannot open for reading");
+  const std::vector<uchar> bytes((std::istreambuf_iterator<char>(in)),
+                                 std::istreambuf_iterator<char>());
+  if (in.bad()) Fail(source, kind, "read error");
+  if (bytes.empty()) Fail(source, kind, "empty file (0 bytes)");
+  cv::Mat image;
+  try {
+    image = cv::imdecode(bytes, flags);
+  } catch (const cv::Exception& e) {
+    Fail(source, kind, std::string("cannot decode: ") + e.what());
+  }
+  if (image.empty()) Fail(source, kind, "cannot decode (corrupt, truncated or not an image)");
+  return image;
+}
+
+void CheckSize(const ImageSource& source, const char* kind, const cv::Mat& image, int width,
+               int height) {
+  if (width <= 0 || height <= 0) return;
+  if (image.cols != width || image.rows != height) {
+    Fail(source, kind,
+         fmt::format("size {}x{} differs from the camera's {}x{}", image.cols, image.rows, width,
+                     height));
+  }
+}
+
+}  // namespace
+
+cv::Mat ReadColorImage(const ImageSource& source, int width, int height) {
+  cv::Mat image = Decode(source, "colour", cv::IMREAD_UNCHANGED);
+  if (image.depth() != CV_8U) {
+    Fail(source, "colour",
+         fmt::format("{}-bit image, expected 8-bit colour (a depth image listed as colour?)",
+                     image.elemSize1() * 8));
+  }
+  CheckSize(source, "colour", image, width, height);
+  switch (image.channels()) {
+    case 3:
+      return image;
+    case 4: {
+      cv::Mat bgr;
+      cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+      return bgr;
+    }
+    case 1: {
+      cv::Mat bgr;
+      cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
+      return bgr;
+    }
+    default:
+      Fail(source, "colour", fmt::format("{} channels, expected 1, 3 or 4", image.channels()));
+  }
+}
+
+cv::Mat ReadDepthImage(const ImageSource& source, double depth_factor, int width, int height) {
+  DLSLAM_CHECK(depth_factor > 0, "depth factor {} must be positive", depth_factor);
+  const cv::Mat raw = Decode(source, "depth", cv::IMREAD_UNCHANGED);
+  if (raw.channels() != 1) {
+    Fail(source, "depth",
+         fmt::format("{} channels, expected a single-channel 16-bit PNG (a colour image listed "
+                     "as depth?)",
+                     raw.channels()));
+  }
+  if (raw.depth() != CV_16U) {
+    Fail(source, "depth",
+         fmt::format("{}-bit image, expected 16-bit depth (an 8-bit mask or visualisation?)",
+                     raw.elemSize1() * 8));
+  }
+  CheckSize(source, "depth", raw, width, height);
+  cv::Mat metres;
+  raw.convertTo(metres, CV_32F, 1.0 / depth_factor);
+  return metres;
+}
+
+cv::Size ReadImageSize(const ImageSource& source) {
+  return Decode(source, "colour", cv::IMREAD_UNCHANGED).size();
+}
+
+}  // namespace dlslam::io

@@ -1,0 +1,177 @@
+// Every kind of bad sequence input gives an InputError that names the file
+// (and the list line that referenced a bad image), never a crash or garbage.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "dlslam/io/sequence.h"
+#include "dlslam/io/sequence_test_folder.h"
+#include "dlslam/util/check.h"
+
+namespace dlslam::io {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+using testing::SequenceFolder;
+
+std::string OpenError(const std::filesystem::path& dir, const RgbdSequenceOptions& options = {}) {
+  try {
+    RgbdSequence::Open(dir, options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "<no error>";
+}
+
+std::string FrameError(const SequenceFolder& folder, std::size_t i) {
+  const RgbdSequence seq = RgbdSequence::Open(folder.dir());
+  const FrameLoadResult result = seq.TryLoadFrame(i);
+  EXPECT_FALSE(result.ok());
+  EXPECT_THROW(seq.LoadFrame(i), InputError);
+  return result.error;
+}
+
+TEST(SequenceBadInput, MissingFolderOrLists) {
+  SequenceFolder folder;
+  EXPECT_THAT(OpenError(folder.dir() / "nope"), HasSubstr("sequence folder not found"));
+  EXPECT_THAT(OpenError(folder.dir()), AllOf(HasSubstr("rgb.txt"), HasSubstr("file not found")));
+  folder.WriteValidSequence(2);
+  std::filesystem::remove(folder.dir() / "depth.txt");
+  EXPECT_THAT(OpenError(folder.dir()), HasSubstr("depth.txt"));
+}
+
+TEST(SequenceBadInput, MalformedListLines) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(3);
+  folder.WriteText("rgb.txt", "# c\n1000.0 rgb/0.png\n1000.033333rgb/1.png\n");
+  EXPECT_THAT(OpenError(folder.dir()),
+              HasSubstr("rgb.txt:3: expected 'timestamp path', got 1 fields"));
+  folder.WriteText("rgb.txt", "1000.0 rgb/0.png\nabc rgb/1.png\n");
+  EXPECT_THAT(OpenError(folder.dir()),
+              HasSubstr("rgb.txt:2: image timestamp 'abc' is not a finite number"));
+  folder.WriteText("rgb.txt", "1000.0 rgb/0.png\n1000.1 rgb/1.png\n1000.05 rgb/2.png\n");
+  EXPECT_THAT(OpenError(folder.dir()),
+              HasSubstr("rgb.txt:3: image timestamp 1000.050000 is not larger"));
+}
+
+TEST(SequenceBadInput, NoAssociatedFrames) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(2);
+  folder.WriteText("depth.txt", "2000.0 depth/0.png\n");
+  EXPECT_THAT(OpenError(folder.dir()), HasSubstr("no RGB image has a depth image within 0.02 s"));
+}
+
+TEST(SequenceBadInput, MissingImageInTheMiddleFailsOnlyThatFrame) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(3);
+  std::filesystem::remove(folder.dir() / "rgb/1.png");
+  const RgbdSequence seq = RgbdSequence::Open(folder.dir());
+  EXPECT_TRUE(seq.TryLoadFrame(0).ok());
+  const FrameLoadResult lost = seq.TryLoadFrame(1);
+  EXPECT_FALSE(lost.ok());
+  EXPECT_THAT(lost.error, AllOf(HasSubstr("rgb.txt:4: colour image"), HasSubstr("rgb/1.png"),
+                                HasSubstr("file not found")));
+  EXPECT_TRUE(seq.TryLoadFrame(2).ok());
+}
+
+TEST(SequenceBadInput, EightBitDepth) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(2);
+  cv::imwrite((folder.dir() / "depth/1.png").string(), cv::Mat(48, 64, CV_8UC1, cv::Scalar(7)));
+  EXPECT_THAT(FrameError(folder, 1), AllOf(HasSubstr("depth.txt:4: depth image"),
+                                           HasSubstr("depth/1.png"), HasSubstr("8-bit")));
+}
+
+TEST(SequenceBadInput, WrongImageSize) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(3);
+  folder.WriteColor("rgb/1.png", {32, 48});
+  folder.WriteDepth("depth/2.png", {64, 24}, 5000);
+  EXPECT_THAT(
+      FrameError(folder, 1),
+      AllOf(HasSubstr("rgb/1.png"), HasSubstr("size 32x48 differs from the camera's 64x48")));
+  EXPECT_THAT(FrameError(folder, 2), AllOf(HasSubstr("depth/2.png"), HasSubstr("size 64x24")));
+}
+
+TEST(SequenceBadInput, EmptyAndCorruptImageFiles) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(3);
+  folder.WriteText("depth/1.png", "");
+  EXPECT_THAT(FrameError(folder, 1),
+              AllOf(HasSubstr("depth/1.png"), HasSubstr("empty file (0 bytes)")));
+  // A PNG signature followed by garbage.
+  folder.WriteText("rgb/2.png", std::string("\x89PNG\r\n\x1a\n", 8) + "this is not image data");
+  EXPECT_THAT(FrameError(folder, 2), AllOf(HasSubstr("rgb.txt:5"), HasSubstr("cannot decode")));
+  // A real PNG cut in half.
+  const auto path = folder.dir() / "depth/0.png";
+  const auto size = std::filesystem::file_size(path);
+  std::filesystem::resize_file(path, size / 2);
+  EXPECT_THAT(FrameError(folder, 0), HasSubstr("depth/0.png"));
+}
+
+TEST(SequenceBadInput, ColourImageKinds) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(2);
+  // 8-bit grayscale becomes three equal channels (documented conversion).
+  cv::imwrite((folder.dir() / "rgb/0.png").string(), cv::Mat(48, 64, CV_8UC1, cv::Scalar(90)));
+  const RgbdFrame gray = RgbdSequence::Open(folder.dir()).LoadFrame(0);
+  EXPECT_EQ(gray.color.type(), CV_8UC3);
+  EXPECT_EQ(gray.color.at<cv::Vec3b>(3, 3), cv::Vec3b(90, 90, 90));
+  // A depth image listed as colour.
+  folder.WriteDepth("rgb/1.png", {64, 48}, 5000);
+  EXPECT_THAT(FrameError(folder, 1), HasSubstr("16-bit image, expected 8-bit colour"));
+}
+
+TEST(SequenceBadInput, UnknownCamera) {
+  SequenceFolder folder("recording_2024");
+  folder.WriteValidSequence(2);
+  std::filesystem::remove(folder.dir() / "camera.yaml");
+  EXPECT_THAT(OpenError(folder.dir()),
+              AllOf(HasSubstr("recording_2024"), HasSubstr("--camera"), HasSubstr("camera.yaml")));
+  RgbdSequenceOptions options;
+  options.camera_preset = "kinect7";
+  EXPECT_THAT(OpenError(folder.dir(), options), HasSubstr("unknown camera preset 'kinect7'"));
+  // A preset whose 640x480 does not match the 64x48 images fails per frame.
+  options.camera_preset = "fr3";
+  const RgbdSequence seq = RgbdSequence::Open(folder.dir(), options);
+  EXPECT_THAT(seq.TryLoadFrame(0).error, HasSubstr("differs from the camera's 640x480"));
+}
+
+TEST(SequenceBadInput, MalformedSettings) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(2);
+  folder.WriteText("camera.yaml", "%YAML:1.0\nCamera.fx: [1,\n  Camera.fy: }\n");
+  EXPECT_THAT(OpenError(folder.dir()), AllOf(HasSubstr("camera.yaml"), HasSubstr("malformed")));
+  folder.WriteText("other.yaml",
+                   "%YAML:1.0\nCamera.fx: 500.0\nCamera.fy: 500.0\nCamera.cx: 32.0\n");
+  RgbdSequenceOptions options;
+  options.settings_file = folder.dir() / "other.yaml";
+  EXPECT_THAT(OpenError(folder.dir(), options),
+              AllOf(HasSubstr("other.yaml"), HasSubstr("missing required key 'Camera.cy'")));
+}
+
+TEST(SequenceBadInput, MalformedGroundTruthAndAccelerometer) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(2);
+  folder.WriteText("groundtruth.txt", "1000.0 0 0 0 0 0 0 1\n1000.1 0 0 0 0 0\n");
+  EXPECT_THAT(OpenError(folder.dir()), HasSubstr("groundtruth.txt:2"));
+  std::filesystem::remove(folder.dir() / "groundtruth.txt");
+  folder.WriteText("accelerometer.txt", "1000.0 0 9.8 x\n");
+  EXPECT_THAT(OpenError(folder.dir()), HasSubstr("accelerometer.txt:1"));
+}
+
+TEST(SequenceBadInput, OptionsAreChecked) {
+  RgbdSequenceOptions options;
+  options.max_association_diff = -0.02;
+  EXPECT_THROW(options.Check(), Error);
+  options = {};
+  options.depth_factor = -5000;
+  EXPECT_THROW(options.Check(), Error);
+  EXPECT_NO_THROW(RgbdSequenceOptions{}.Check());
+}
+
+}  // namespace
+}  // namespace dlslam::io
