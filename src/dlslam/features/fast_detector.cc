@@ -1,0 +1,232 @@
+#include "dlslam/features/fast_detector.h"
+
+#include <opencv2/core/hal/intrin.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+
+#include "dlslam/util/check.h"
+
+namespace dlslam::features {
+namespace {
+
+// Circle of radius 3 clockwise from the top (x right, y down).
+constexpr int kCircleX[16] = {0, 1, 2, 3, 3, 3, 2, 1, 0, -1, -2, -3, -3, -3, -2, -1};
+constexpr int kCircleY[16] = {-3, -3, -2, -1, 0, 1, 2, 3, 3, 3, 2, 1, 0, -1, -2, -3};
+constexpr int kArc = 9;
+
+void CheckRegion(const cv::Mat& image, const cv::Rect& region, int margin, const char* what) {
+  DLSLAM_CHECK(region.x >= margin && region.y >= margin &&
+                   region.x + region.width <= image.cols - margin &&
+                   region.y + region.height <= image.rows - margin,
+               "{}: region ({}, {}, {}x{}) not {} px inside the {}x{} image", what, region.x,
+               region.y, region.width, region.height, margin, image.cols, image.rows);
+}
+
+#if CV_SIMD128
+// Pixel v as a signed byte with the unsigned order (top bit flipped).
+inline cv::v_int8x16 AsSigned(const cv::v_uint8x16& v) {
+  return cv::v_reinterpret_as_s8(v ^ cv::v_setall_u8(0x80));
+}
+
+// Scores of the 16 pixels p .. p + 15 at once, as Fast9Score computes them:
+// with saturating differences (brighter: circle - centre, darker: centre -
+// circle, 0 when the other way round) the best arc's minimum, by windows of
+// 2, 4, 8 and 9 pixels built by doubling.
+inline cv::v_uint8x16 BlockScores(const uchar* p, const int offsets[16]) {
+  const cv::v_uint8x16 centre = cv::v_load(p);
+  cv::v_uint8x16 bright[16], dark[16];
+  for (int k = 0; k < 16; ++k) {
+    const cv::v_uint8x16 c = cv::v_load(p + offsets[k]);
+    bright[k] = c - centre;  // saturating
+    dark[k] = centre - c;
+  }
+  const auto best_arc = [](const cv::v_uint8x16 (&diff)[16]) {
+    cv::v_uint8x16 w2[16], w4[16];
+    for (int k = 0; k < 16; ++k) w2[k] = cv::v_min(diff[k], diff[(k + 1) & 15]);
+    for (int k = 0; k < 16; ++k) w4[k] = cv::v_min(w2[k], w2[(k + 2) & 15]);
+    cv::v_uint8x16 best = cv::v_setzero_u8();
+    for (int k = 0; k < 16; ++k) {
+      const cv::v_uint8x16 w8 = cv::v_min(w4[k], w4[(k + 4) & 15]);
+      best = cv::v_max(best, cv::v_min(w8, diff[(k + 8) & 15]));
+    }
+    return best;
+  };
+  // Corner at t <=> best arc minimum > t, so the score is that minimum - 1.
+  return cv::v_max(best_arc(bright), best_arc(dark)) - cv::v_setall_u8(1);
+}
+#endif
+
+}  // namespace
+
+void FastCircleOffsets(int step, int offsets[16]) {
+  for (int k = 0; k < 16; ++k) offsets[k] = kCircleY[k] * step + kCircleX[k];
+}
+
+int Fast9Score(const uchar* p, const int circle_offsets[16]) {
+  // d[k] = circle pixel k minus the centre. The score is the best over the
+  // 16 arcs of 9 of the arc's smallest difference (bright) or of minus its
+  // largest one (dark); windows of 9 are built by doubling (2, 4, 8, +1).
+  alignas(16) int16_t d[16];
+  const int centre = p[0];
+  for (int k = 0; k < 16; ++k) d[k] = static_cast<int16_t>(p[circle_offsets[k]] - centre);
+  int best_bright = 0, best_dark = 0;  // max of arc minima, min of arc maxima
+#if CV_SIMD128
+  // Arcs starting at 0..7 (first vector) and 8..15 (second); the circle
+  // wraps, so element k + n of the first is element k + n - 8 of the second.
+  const cv::v_int16x8 a = cv::v_load_aligned(d), b = cv::v_load_aligned(d + 8);
+  cv::v_int16x8 lo_a = cv::v_min(a, cv::v_extract<1>(a, b));
+  cv::v_int16x8 lo_b = cv::v_min(b, cv::v_extract<1>(b, a));
+  cv::v_int16x8 hi_a = cv::v_max(a, cv::v_extract<1>(a, b));
+  cv::v_int16x8 hi_b = cv::v_max(b, cv::v_extract<1>(b, a));
+  cv::v_int16x8 t_a = cv::v_min(lo_a, cv::v_extract<2>(lo_a, lo_b));
+  lo_b = cv::v_min(lo_b, cv::v_extract<2>(lo_b, lo_a));
+  lo_a = t_a;
+  t_a = cv::v_max(hi_a, cv::v_extract<2>(hi_a, hi_b));
+  hi_b = cv::v_max(hi_b, cv::v_extract<2>(hi_b, hi_a));
+  hi_a = t_a;
+  t_a = cv::v_min(lo_a, cv::v_extract<4>(lo_a, lo_b));
+  lo_b = cv::v_min(lo_b, cv::v_extract<4>(lo_b, lo_a));
+  lo_a = t_a;
+  t_a = cv::v_max(hi_a, cv::v_extract<4>(hi_a, hi_b));
+  hi_b = cv::v_max(hi_b, cv::v_extract<4>(hi_b, hi_a));
+  hi_a = t_a;
+  // Ninth element: d[k + 8] is b for arcs 0..7 and a for arcs 8..15.
+  best_bright = cv::v_reduce_max(cv::v_max(cv::v_min(lo_a, b), cv::v_min(lo_b, a)));
+  best_dark = cv::v_reduce_min(cv::v_min(cv::v_max(hi_a, b), cv::v_max(hi_b, a)));
+#else
+  best_bright = -256;
+  best_dark = 256;
+  for (int k = 0; k < 16; ++k) {
+    int arc_min = 256, arc_max = -256;
+    for (int j = 0; j < kArc; ++j) {
+      arc_min = std::min<int>(arc_min, d[(k + j) & 15]);
+      arc_max = std::max<int>(arc_max, d[(k + j) & 15]);
+    }
+    best_bright = std::max(best_bright, arc_min);
+    best_dark = std::min(best_dark, arc_max);
+  }
+#endif
+  // Corner at t <=> some arc has all differences > t (bright) or < -t (dark).
+  return std::max({best_bright - 1, -best_dark - 1, 0});
+}
+
+void ComputeFastScores(const cv::Mat& image, const cv::Rect& region, int threshold,
+                       cv::Mat& scores, std::vector<cv::Point>& candidates) {
+  DLSLAM_CHECK_EQ(image.type(), CV_8UC1, "FAST needs an 8-bit grey image");
+  DLSLAM_CHECK(threshold >= 1 && threshold <= 254, "FAST threshold {}", threshold);
+  CheckRegion(image, region, 3, "ComputeFastScores");
+  scores.create(image.size(), CV_8UC1);
+  int offsets[16];
+  FastCircleOffsets(static_cast<int>(image.step1()), offsets);
+  const int x_end = region.x + region.width;
+  constexpr int kLanes = 16;
+
+  for (int y = region.y; y < region.y + region.height; ++y) {
+    const uchar* row = image.ptr<uchar>(y);
+    uchar* score_row = scores.ptr<uchar>(y);
+    int x = region.x;
+#if CV_SIMD128
+    int done_until = x;  // pixels before it are scored already
+    const cv::v_uint8x16 t = cv::v_setall_u8(static_cast<uchar>(threshold));
+    const cv::v_uint8x16 below_threshold = cv::v_setall_u8(static_cast<uchar>(threshold - 1));
+    for (; region.width >= kLanes && x < x_end; x += kLanes) {
+      x = std::min(x, x_end - kLanes);  // the last block may overlap the previous one
+      const uchar* p = row + x;
+      const cv::v_uint8x16 centre = cv::v_load(p);
+      const cv::v_int8x16 brighter_than = AsSigned(centre + t);  // saturating
+      const cv::v_int8x16 darker_than = AsSigned(centre - t);
+      // Every arc of 9 holds one of pixels 0/8 and one of pixels 4/12.
+      const cv::v_int8x16 c0 = AsSigned(cv::v_load(p + offsets[0]));
+      const cv::v_int8x16 c4 = AsSigned(cv::v_load(p + offsets[4]));
+      const cv::v_int8x16 c8 = AsSigned(cv::v_load(p + offsets[8]));
+      const cv::v_int8x16 c12 = AsSigned(cv::v_load(p + offsets[12]));
+      const cv::v_int8x16 maybe_bright = ((c0 > brighter_than) | (c8 > brighter_than)) &
+                                         ((c4 > brighter_than) | (c12 > brighter_than));
+      const cv::v_int8x16 maybe_dark = ((c0 < darker_than) | (c8 < darker_than)) &
+                                       ((c4 < darker_than) | (c12 < darker_than));
+      if (!cv::v_check_any(maybe_bright | maybe_dark)) {
+        cv::v_store(score_row + x, cv::v_setzero_u8());
+        done_until = x + kLanes;
+        continue;
+      }
+      const cv::v_uint8x16 block_scores = BlockScores(p, offsets);
+      const cv::v_uint8x16 is_corner = block_scores > below_threshold;
+      cv::v_store(score_row + x, block_scores & is_corner);
+      unsigned lanes = static_cast<unsigned>(cv::v_signmask(is_corner));
+      // Pixels an overlapping last block shares with the previous one are listed already.
+      if (x < done_until) lanes &= ~0u << (done_until - x);
+      for (; lanes != 0; lanes &= lanes - 1) candidates.emplace_back(x + std::countr_zero(lanes), y);
+      done_until = x + kLanes;
+    }
+#endif
+    for (; x < x_end; ++x) {  // narrow regions, or no SIMD
+      const int score = Fast9Score(row + x, offsets);
+      const bool corner = score >= threshold;
+      score_row[x] = static_cast<uchar>(corner ? score : 0);
+      if (corner) candidates.emplace_back(x, y);
+    }
+  }
+}
+
+void SuppressNonMaxima(const cv::Mat& scores, const std::vector<cv::Point>& candidates,
+                       const cv::Rect& region, int threshold, std::vector<FastCorner>& corners) {
+  DLSLAM_CHECK_EQ(scores.type(), CV_8UC1, "FAST scores");
+  CheckRegion(scores, region, 1, "SuppressNonMaxima");
+  const int step = static_cast<int>(scores.step1());
+  for (const cv::Point& p : candidates) {
+    if (!region.contains(p)) continue;
+    const uchar* c = scores.ptr<uchar>(p.y) + p.x;
+    const int s = c[0];
+    if (s >= threshold && s > c[-1] && s > c[1] && s > c[-step - 1] && s > c[-step] &&
+        s > c[-step + 1] && s > c[step - 1] && s > c[step] && s > c[step + 1]) {
+      corners.push_back({p.x, p.y, s});
+    }
+  }
+}
+
+void DetectGridFast(const cv::Mat& image, const cv::Rect& area, const GridFastParams& params,
+                    FastScratch& scratch, std::vector<FastCorner>& corners) {
+  DLSLAM_CHECK(params.threshold_min >= 1 && params.threshold_min <= params.threshold_initial,
+               "FAST thresholds min {} initial {}", params.threshold_min,
+               params.threshold_initial);
+  DLSLAM_CHECK_GT(params.cell_size, 0, "FAST cell size");
+  if (area.width <= 0 || area.height <= 0) return;
+  CheckRegion(image, area, 4, "DetectGridFast");
+  // Scored one pixel beyond the area so that suppression at its edge is exact.
+  const cv::Rect scored_area(area.x - 1, area.y - 1, area.width + 2, area.height + 2);
+
+  scratch.candidates.clear();
+  ComputeFastScores(image, scored_area, params.threshold_initial, scratch.scores,
+                    scratch.candidates);
+  const size_t first = corners.size();
+  SuppressNonMaxima(scratch.scores, scratch.candidates, area, params.threshold_initial, corners);
+  if (params.threshold_min == params.threshold_initial) return;
+
+  const int n_cols = std::max(1, (area.width + params.cell_size / 2) / params.cell_size);
+  const int n_rows = std::max(1, (area.height + params.cell_size / 2) / params.cell_size);
+  std::vector<int> cell_counts(static_cast<size_t>(n_cols * n_rows), 0);
+  for (size_t i = first; i < corners.size(); ++i) {
+    const int col = (corners[i].x - area.x) * n_cols / area.width;
+    const int row = (corners[i].y - area.y) * n_rows / area.height;
+    ++cell_counts[static_cast<size_t>(row * n_cols + col)];
+  }
+  for (int row = 0; row < n_rows; ++row) {
+    const int y0 = area.y + row * area.height / n_rows;
+    const int y1 = area.y + (row + 1) * area.height / n_rows;
+    for (int col = 0; col < n_cols; ++col) {
+      if (cell_counts[static_cast<size_t>(row * n_cols + col)] > 0) continue;
+      const int x0 = area.x + col * area.width / n_cols;
+      const int x1 = area.x + (col + 1) * area.width / n_cols;
+      // Rescored one pixel around the cell too, for exact suppression.
+      const cv::Rect ring = cv::Rect(x0 - 1, y0 - 1, x1 - x0 + 2, y1 - y0 + 2) & scored_area;
+      scratch.candidates.clear();
+      ComputeFastScores(image, ring, params.threshold_min, scratch.scores, scratch.candidates);
+      SuppressNonMaxima(scratch.scores, scratch.candidates, cv::Rect(x0, y0, x1 - x0, y1 - y0),
+                        params.threshold_min, corners);
+    }
+  }
+}
+
+}  // namespace dlslam::features

@@ -1,0 +1,123 @@
+#include "dlslam/features/orb_extractor.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+
+#include "dlslam/features/orientation.h"
+#include "dlslam/features/quadtree.h"
+#include "dlslam/util/check.h"
+
+namespace dlslam::features {
+
+OrbExtractor::OrbExtractor(const OrbOptions& options, std::span<const PatternTest> pattern)
+    : options_((options.Check(), options)), brief_(pattern) {
+  level_scales_ = LevelScales(options_);
+  level_targets_ = LevelFeatureTargets(options_);
+  blur_kernel_ = cv::getGaussianKernel(7, 2.0, CV_32F);
+  const auto n = static_cast<size_t>(options_.n_levels);
+  pyramid_.resize(n);
+  smoothed_.resize(n);
+  level_corners_.resize(n);
+}
+
+OrbFeatures OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask) {
+  OrbFeatures out;
+  Extract(image, exclusion_mask, out);
+  return out;
+}
+
+void OrbExtractor::BuildPyramid(const cv::Mat& grey) {
+  pyramid_[0] = grey;
+  for (size_t level = 1; level < pyramid_.size(); ++level) {
+    const cv::Size size(static_cast<int>(std::lround(grey.cols / level_scales_[level])),
+                        static_cast<int>(std::lround(grey.rows / level_scales_[level])));
+    // Levels without room for a keypoint stay empty (and get none).
+    if (size.width <= 2 * options_.edge_border || size.height <= 2 * options_.edge_border) {
+      pyramid_[level].release();
+      continue;
+    }
+    cv::resize(pyramid_[level - 1], pyramid_[level], size, 0, 0, cv::INTER_LINEAR);
+  }
+}
+
+void OrbExtractor::DetectLevel(int level, const cv::Mat& exclusion_mask) {
+  const auto l = static_cast<size_t>(level);
+  std::vector<FastCorner>& corners = level_corners_[l];
+  corners.clear();
+  const cv::Mat& image = pyramid_[l];
+  if (image.empty()) return;
+  const int border = options_.edge_border;
+  const cv::Rect area(border, border, image.cols - 2 * border, image.rows - 2 * border);
+  const GridFastParams fast{options_.fast_threshold_initial, options_.fast_threshold_min,
+                            options_.cell_size};
+  DetectGridFast(image, area, fast, fast_scratch_, corners);
+
+  if (!exclusion_mask.empty()) {
+    const double scale = level_scales_[l];
+    std::erase_if(corners, [&](const FastCorner& c) {
+      const int mx = std::min(static_cast<int>(std::lround(c.x * scale)), exclusion_mask.cols - 1);
+      const int my = std::min(static_cast<int>(std::lround(c.y * scale)), exclusion_mask.rows - 1);
+      return exclusion_mask.at<uchar>(my, mx) != 0;
+    });
+  }
+  DistributeQuadtree(area, level_targets_[l], corners);
+}
+
+void OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask,
+                           OrbFeatures& out) {
+  DLSLAM_CHECK(!image.empty(), "ORB extraction needs a non-empty image");
+  DLSLAM_CHECK(image.depth() == CV_8U && (image.channels() == 1 || image.channels() == 3 ||
+                                          image.channels() == 4),
+               "ORB extraction needs an 8-bit grey or BGR(A) image, got {} (depth {}, {} channels)",
+               cv::typeToString(image.type()), image.depth(), image.channels());
+  const int min_side = 2 * options_.edge_border + 1;
+  DLSLAM_CHECK(image.cols >= min_side && image.rows >= min_side,
+               "image {}x{} too small for ORB: needs {} px or more on each side (edge border {})",
+               image.cols, image.rows, min_side, options_.edge_border);
+  if (!exclusion_mask.empty()) {
+    DLSLAM_CHECK(exclusion_mask.type() == CV_8UC1 && exclusion_mask.size() == image.size(),
+                 "exclusion mask must be CV_8UC1 {}x{}, got {} {}x{}", image.cols, image.rows,
+                 cv::typeToString(exclusion_mask.type()), exclusion_mask.cols,
+                 exclusion_mask.rows);
+  }
+  if (image.channels() == 1) {
+    BuildPyramid(image);
+  } else {
+    cv::cvtColor(image, grey_, image.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
+    BuildPyramid(grey_);
+  }
+
+  size_t total = 0;
+  for (int level = 0; level < options_.n_levels; ++level) {
+    DetectLevel(level, exclusion_mask);
+    total += level_corners_[static_cast<size_t>(level)].size();
+  }
+
+  out.keypoints.clear();
+  out.keypoints.reserve(total);
+  out.descriptors.create(static_cast<int>(total), kDescriptorBytes, CV_8UC1);
+  int row = 0;
+  for (size_t level = 0; level < pyramid_.size(); ++level) {
+    const std::vector<FastCorner>& corners = level_corners_[level];
+    if (corners.empty()) {
+      smoothed_[level].release();
+      continue;
+    }
+    // 7x7 Gaussian, sigma 2. sepFilter2D rather than GaussianBlur: OpenCV
+    // 4.6's bit-exact 8-bit GaussianBlur path is about 25% slower here.
+    cv::sepFilter2D(pyramid_[level], smoothed_[level], CV_8U, blur_kernel_, blur_kernel_,
+                    cv::Point(-1, -1), 0.0, cv::BORDER_REFLECT_101);
+    const auto scale = static_cast<float>(level_scales_[level]);
+    for (const FastCorner& c : corners) {
+      const float angle = IntensityCentroidAngle(pyramid_[level], c.x, c.y);
+      brief_.Compute(smoothed_[level], c.x, c.y, angle, out.descriptors.ptr<uchar>(row++));
+      out.keypoints.emplace_back(cv::Point2f(static_cast<float>(c.x) * scale,
+                                             static_cast<float>(c.y) * scale),
+                                 static_cast<float>(kPatchSize) * scale, angle,
+                                 static_cast<float>(c.score), static_cast<int>(level));
+    }
+  }
+}
+
+}  // namespace dlslam::features

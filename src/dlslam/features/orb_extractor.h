@@ -1,0 +1,73 @@
+#pragma once
+// ORB features as ORB-SLAM3 extracts them, written by us: an 8-level image
+// pyramid, FAST-9 on a grid with a threshold fallback, an even spread per
+// level by a quadtree, intensity-centroid orientation and steered BRIEF with
+// a learned test pattern. Design and measurements: docs/features.md.
+//
+//   OrbExtractor orb;                       // ORB-SLAM's defaults for 640x480
+//   OrbFeatures f = orb.Extract(grey);      // f.keypoints, f.descriptors (n x 32)
+
+#include <opencv2/core.hpp>
+
+#include <span>
+#include <vector>
+
+#include "dlslam/features/brief_descriptor.h"
+#include "dlslam/features/fast_detector.h"
+#include "dlslam/features/orb_options.h"
+#include "dlslam/features/orb_pattern.h"
+
+namespace dlslam::features {
+
+struct OrbFeatures {
+  // Level-0 pixel coordinates; octave = pyramid level, size = 31 px times
+  // the level's scale, angle [deg, 0..360), response = FAST score.
+  std::vector<cv::KeyPoint> keypoints;
+  // CV_8UC1, keypoints.size() x kDescriptorBytes; row i describes keypoint i.
+  cv::Mat descriptors;
+};
+
+// Not thread-safe: an extractor keeps its pyramid and scratch memory between
+// calls (use one per thread).
+class OrbExtractor {
+ public:
+  // Throws dlslam::Error for invalid options (OrbOptions::Check).
+  explicit OrbExtractor(const OrbOptions& options = {},
+                        std::span<const PatternTest> pattern = LearnedOrbPattern());
+
+  // `image`: CV_8UC1 grey, or CV_8UC3 / CV_8UC4 in OpenCV's BGR(A) order,
+  // converted to grey. Anything else (16-bit, float, other channel counts),
+  // an empty image or one smaller than 2 * edge_border + 1 px on a side
+  // throws dlslam::Error. `exclusion_mask`: empty, or CV_8UC1 of the image's
+  // size; no keypoint is kept where it is non-zero (e.g. dynamic objects),
+  // and the level's budget goes to the rest of the image.
+  OrbFeatures Extract(const cv::Mat& image, const cv::Mat& exclusion_mask = cv::Mat());
+  // The same, reusing `out`'s memory.
+  void Extract(const cv::Mat& image, const cv::Mat& exclusion_mask, OrbFeatures& out);
+
+  const OrbOptions& options() const { return options_; }
+  // scale_factor^level for each level.
+  const std::vector<double>& level_scales() const { return level_scales_; }
+  // The grey pyramid and its Gaussian-smoothed twin (7x7, sigma 2) of the
+  // last Extract call (level 0 shares the caller's grey image); levels too
+  // small for keypoints, and smoothed levels without keypoints, are empty.
+  const std::vector<cv::Mat>& pyramid() const { return pyramid_; }
+  const std::vector<cv::Mat>& smoothed_pyramid() const { return smoothed_; }
+
+ private:
+  void BuildPyramid(const cv::Mat& grey);
+  void DetectLevel(int level, const cv::Mat& exclusion_mask);
+
+  OrbOptions options_;
+  SteeredBrief brief_;
+  std::vector<double> level_scales_;
+  std::vector<int> level_targets_;
+  std::vector<cv::Mat> pyramid_, smoothed_;
+  cv::Mat blur_kernel_;
+  // Scratch kept between calls.
+  cv::Mat grey_;
+  FastScratch fast_scratch_;
+  std::vector<std::vector<FastCorner>> level_corners_;
+};
+
+}  // namespace dlslam::features

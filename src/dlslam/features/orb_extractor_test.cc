@@ -1,0 +1,161 @@
+#include "dlslam/features/orb_extractor.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "dlslam/features/test_images.h"
+#include "dlslam/util/check.h"
+
+namespace dlslam::features {
+namespace {
+
+std::vector<std::pair<std::string, cv::Mat>> Images() {
+  std::vector<std::pair<std::string, cv::Mat>> images = {{"synthetic", testing::SyntheticTexture()}};
+  if (auto real = testing::RealFrame("0.000000.jpg")) images.emplace_back("7scenes 0", *real);
+  if (auto real = testing::RealFrame("10.000000.jpg")) images.emplace_back("7scenes 10", *real);
+  return images;
+}
+
+TEST(OrbExtractorTest, CountNearTheTargetAndSpreadOverTheImage) {
+  OrbExtractor orb;
+  for (const auto& [name, image] : Images()) {
+    const OrbFeatures f = orb.Extract(image);
+    const int n = static_cast<int>(f.keypoints.size());
+    EXPECT_GE(n, 900) << name;
+    EXPECT_LE(n, 1000) << name;
+    ASSERT_EQ(f.descriptors.rows, n);
+    EXPECT_EQ(f.descriptors.cols, kDescriptorBytes);
+    EXPECT_EQ(f.descriptors.type(), CV_8UC1);
+    int quadrant[4] = {};
+    std::vector<int> per_level(8, 0);
+    for (const cv::KeyPoint& k : f.keypoints) {
+      ++quadrant[(k.pt.x >= image.cols / 2 ? 1 : 0) + (k.pt.y >= image.rows / 2 ? 2 : 0)];
+      ASSERT_GE(k.octave, 0);
+      ASSERT_LT(k.octave, 8);
+      ++per_level[static_cast<size_t>(k.octave)];
+      const double scale = std::pow(1.2, k.octave);
+      EXPECT_NEAR(k.size, 31 * scale, 1e-3);
+      // Whole patch inside the level image (19 px edge border at the level).
+      EXPECT_GE(k.pt.x / scale, 18.999) << name;
+      EXPECT_GE(k.pt.y / scale, 18.999) << name;
+      EXPECT_LT(k.pt.x / scale, image.cols / scale - 18.0) << name;
+      EXPECT_LT(k.pt.y / scale, image.rows / scale - 18.0) << name;
+      EXPECT_GE(k.angle, 0.0f);
+      EXPECT_LT(k.angle, 360.0f);
+      EXPECT_GT(k.response, 0.0f);
+    }
+    for (int q = 0; q < 4; ++q) EXPECT_GT(quadrant[q], n / 10) << name << " quadrant " << q;
+    // The finest level gets the most, as the per-level targets say.
+    EXPECT_GT(per_level[0], per_level[7]) << name;
+    EXPECT_GT(per_level[7], 0) << name;
+  }
+}
+
+TEST(OrbExtractorTest, DeterministicAndColourIsConvertedToGrey) {
+  const cv::Mat grey = testing::SyntheticTexture();
+  cv::Mat bgr, bgra;
+  cv::cvtColor(grey, bgr, cv::COLOR_GRAY2BGR);
+  cv::cvtColor(grey, bgra, cv::COLOR_GRAY2BGRA);
+  OrbExtractor orb;
+  const OrbFeatures a = orb.Extract(grey);
+  for (const cv::Mat& input : {grey, bgr, bgra}) {
+    const OrbFeatures b = orb.Extract(input);
+    ASSERT_EQ(a.keypoints.size(), b.keypoints.size());
+    for (size_t i = 0; i < a.keypoints.size(); ++i) {
+      ASSERT_EQ(a.keypoints[i].pt, b.keypoints[i].pt);
+      ASSERT_EQ(a.keypoints[i].angle, b.keypoints[i].angle);
+    }
+    EXPECT_EQ(cv::norm(a.descriptors, b.descriptors, cv::NORM_HAMMING), 0.0);
+  }
+}
+
+TEST(OrbExtractorTest, ExclusionMaskDropsKeypointsAndMovesTheBudget) {
+  const cv::Mat image = testing::SyntheticTexture();
+  cv::Mat mask(image.size(), CV_8UC1, cv::Scalar(0));
+  mask(cv::Rect(0, 0, 320, 480)).setTo(255);       // left half excluded
+  mask(cv::Rect(400, 100, 100, 100)).setTo(1);     // any non-zero value excludes
+  OrbExtractor orb;
+  const OrbFeatures f = orb.Extract(image, mask);
+  EXPECT_GE(f.keypoints.size(), 800u);
+  EXPECT_EQ(f.descriptors.rows, static_cast<int>(f.keypoints.size()));
+  for (const cv::KeyPoint& k : f.keypoints) {
+    ASSERT_EQ(mask.at<uchar>(cvRound(k.pt.y), cvRound(k.pt.x)), 0) << k.pt;
+  }
+}
+
+TEST(OrbExtractorTest, RejectsBadInput) {
+  OrbExtractor orb;
+  const cv::Mat image = testing::SyntheticTexture();
+  EXPECT_THROW(orb.Extract(cv::Mat()), Error);
+  EXPECT_THROW(orb.Extract(cv::Mat(480, 640, CV_16UC1, cv::Scalar(1000))), Error);
+  EXPECT_THROW(orb.Extract(cv::Mat(480, 640, CV_32FC1, cv::Scalar(0.5))), Error);
+  EXPECT_THROW(orb.Extract(cv::Mat(480, 640, CV_8UC2, cv::Scalar(1))), Error);
+  EXPECT_THROW(orb.Extract(image(cv::Rect(0, 0, 38, 300))), Error);  // needs 2 * 19 + 1
+  EXPECT_NO_THROW(orb.Extract(image(cv::Rect(0, 0, 39, 39))));
+  EXPECT_THROW(orb.Extract(image, cv::Mat(100, 100, CV_8UC1, cv::Scalar(0))), Error);
+  EXPECT_THROW(orb.Extract(image, cv::Mat(image.size(), CV_16UC1, cv::Scalar(0))), Error);
+  try {
+    orb.Extract(cv::Mat(480, 640, CV_16UC1));
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("16U"), std::string::npos) << e.what();
+  }
+}
+
+TEST(OrbExtractorTest, SmallImagesGetKeypointsOnTheLevelsThatFit) {
+  OrbExtractor orb;
+  const OrbFeatures f = orb.Extract(testing::SyntheticTexture(120, 90, 2));
+  EXPECT_GT(f.keypoints.size(), 20u);
+  // round(90 / 1.2^4) = 43 still leaves an area inside the 19 px borders; 36 does not.
+  for (const cv::KeyPoint& k : f.keypoints) EXPECT_LE(k.octave, 4);
+}
+
+TEST(OrbOptionsTest, CheckNamesTheBadField) {
+  EXPECT_NO_THROW(OrbOptions{}.Check());
+  const auto expect_bad = [](auto change, const std::string& field) {
+    OrbOptions o;
+    change(o);
+    try {
+      o.Check();
+      ADD_FAILURE() << field << " accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  };
+  expect_bad([](OrbOptions& o) { o.n_features = 0; }, "n_features");
+  expect_bad([](OrbOptions& o) { o.n_levels = 0; }, "n_levels");
+  expect_bad([](OrbOptions& o) { o.scale_factor = 1.0; }, "scale_factor");
+  expect_bad([](OrbOptions& o) { o.fast_threshold_initial = 0; }, "fast_threshold_initial");
+  expect_bad([](OrbOptions& o) { o.fast_threshold_min = 21; }, "fast_threshold_min");
+  expect_bad([](OrbOptions& o) { o.cell_size = 4; }, "cell_size");
+  expect_bad([](OrbOptions& o) { o.edge_border = 15; }, "edge_border");
+  OrbOptions bad;
+  bad.n_levels = -1;
+  EXPECT_THROW(OrbExtractor{bad}, Error);
+}
+
+TEST(OrbOptionsTest, LevelTargetsFormAGeometricSeriesSummingToTheTotal) {
+  for (int n : {1000, 1500, 7}) {
+    OrbOptions o;
+    o.n_features = n;
+    const std::vector<int> targets = LevelFeatureTargets(o);
+    ASSERT_EQ(targets.size(), 8u);
+    int sum = 0;
+    for (int t : targets) {
+      EXPECT_GE(t, 0);
+      sum += t;
+    }
+    EXPECT_EQ(sum, n);
+  }
+  const std::vector<int> t = LevelFeatureTargets(OrbOptions{});
+  // First term N (1 - r) / (1 - r^8) with r = 1 / 1.2: 217.
+  EXPECT_EQ(t[0], 217);
+  for (size_t l = 1; l + 1 < t.size(); ++l) EXPECT_NEAR(t[l], t[l - 1] / 1.2, 1.0);
+  const std::vector<double> scales = LevelScales(OrbOptions{});
+  EXPECT_NEAR(scales[7], std::pow(1.2, 7), 1e-12);
+}
+
+}  // namespace
+}  // namespace dlslam::features

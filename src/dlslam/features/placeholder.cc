@@ -1,1 +1,0 @@
-namespace dlslam {}  // replaced when this module is built
