@@ -82,7 +82,9 @@ def write(path, stamps, rotations, positions, decimals, rng=None):
 
 
 def make_case(name, seed, motion, duration, t0, gt_gaps=(), est_offset=0.0, est_scale=1.0,
-              gt_step=0.01):
+              gt_step=0.01, est_span=(0.5, 0.7)):
+    """est_span: the estimate starts est_span[0] s after the ground truth and ends
+    est_span[1] s after it (negative: before, so RPE's last-pose rule matters)."""
     rng = np.random.default_rng(seed)
     # Ground truth: motion capture on its own clock.
     n_gt = int(duration / gt_step)
@@ -96,8 +98,8 @@ def make_case(name, seed, motion, duration, t0, gt_gaps=(), est_offset=0.0, est_
         r, p = motion(t)
         gt_r.append(r)
         gt_p.append(p + rng.normal(0, 3e-4, 3))
-    # Estimate: 30 Hz camera, starting late and running past the ground truth.
-    cam_t = np.arange(0.5, duration + 0.7, 1 / 30.0)
+    # Estimate: 30 Hz camera, starting late.
+    cam_t = np.arange(est_span[0], duration + est_span[1], 1 / 30.0)
     cam_t = cam_t + rng.uniform(-2e-3, 2e-3, len(cam_t))
     keep = rng.random(len(cam_t)) > 0.05
     lost = rng.uniform(0.3, 0.7) * duration
@@ -165,18 +167,20 @@ def main():
     expect_all(d, units=(("s", "s", 1.0), ("s_short", "s", 0.1), ("m", "m", 0.5),
                          ("f", "f", 10.0)))
     # Clock offset between estimate and ground truth: with and without --offset.
-    d = make_case("offset", 2, handheld_motion, 8.0, 1341846313.592026, est_offset=0.35)
+    d = make_case("offset", 2, handheld_motion, 8.0, 1341846313.592026, est_offset=0.35,
+                  est_span=(0.5, -0.5))
     expect_all(d, offset=0.35)
     expect(d, "expected_ate_no_offset.json", "ate", max_diff=0.02, offset=0.0, scale=1.0)
     expect(d, "expected_rpe_s_no_offset.json", "rpe", delta=1.0, delta_unit="s", offset=0.0,
            scale=1.0)
     # Monocular-like estimate at 1/2.5 of the true scale.
-    d = make_case("scale", 3, handheld_motion, 8.0, 1311868164.363181, est_scale=2.5)
+    d = make_case("scale", 3, handheld_motion, 8.0, 1311868164.363181, est_scale=2.5,
+                  est_span=(0.5, -0.5))
     expect_all(d, scale=2.5)
     expect(d, "expected_ate_unscaled.json", "ate", max_diff=0.02, offset=0.0, scale=1.0)
     # Rotation-heavy: every delta unit picks different pairs; f with a half
     # delta exercises the tie-breaking of the closest-index search.
-    d = make_case("spin", 4, spinning_motion, 10.0, 1000.0)
+    d = make_case("spin", 4, spinning_motion, 10.0, 1000.0, est_span=(0.3, -0.3))
     expect_all(d, units=(("s", "s", 1.0), ("m", "m", 0.2), ("rad", "rad", 0.5),
                          ("deg", "deg", 20.0), ("f", "f", 10.0), ("f_half", "f", 2.5)))
     # Motion-capture dropouts: unmatched frames and RPE pairs without ground truth.

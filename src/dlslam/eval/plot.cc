@@ -62,7 +62,10 @@ void DrawSeries(Canvas& canvas, const PixelRect& rect, const std::vector<double>
   const Eigen::Vector2d a = axes.ToPixel(axes.x_range().min, rmse);
   const Eigen::Vector2d b = axes.ToPixel(axes.x_range().max, rmse);
   canvas.Line(a, b, kRmse, 1.0);
-  canvas.Text({b.x() - 4, b.y() - 5}, fmt::format("rmse {:.4g}", rmse), 13.0, kRmse, TextAnchor::kEnd);
+  // Above the frame's right end, clear of the data.
+  const Eigen::Vector2d corner = axes.ToPixel(axes.x_range().max, axes.y_range().max);
+  canvas.Text({corner.x(), corner.y() - 8}, fmt::format("rmse {:.4g}", rmse), 13.0, kRmse,
+              TextAnchor::kEnd);
 }
 
 void DrawAte(Canvas& canvas, const AteResult& r) {

@@ -117,7 +117,7 @@ void DrawColorBar(Canvas& canvas, const PixelRect& rect, const Range& values, st
     canvas.Line({rect.x + rect.width, py}, {rect.x + rect.width + 4, py}, kBlack, 1.0);
     canvas.Text({rect.x + rect.width + 7, py + 4}, TickLabel(t, tick_step), kFont, kBlack);
   }
-  canvas.Text({rect.x, rect.y - 10}, label, kFont, kBlack);
+  canvas.Text({rect.x + rect.width / 2, rect.y - 16}, label, kFont, kBlack, TextAnchor::kMiddle);
 }
 
 }  // namespace dlslam::eval
