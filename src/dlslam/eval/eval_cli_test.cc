@@ -1,0 +1,147 @@
+// `dlslam eval` run as a user runs it: JSON equal to the reference fixtures,
+// plots written, bad input refused with the file named and a non-zero exit.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <sys/wait.h>
+
+#include "tests/support/test_data.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string output;
+};
+
+std::string Quoted(const fs::path& p) {
+  // Appended piecewise: "'" + s + "'" trips a GCC 12 -Wrestrict false positive.
+  std::string quoted(1, '\'');
+  quoted.append(p.string()).push_back('\'');
+  return quoted;
+}
+
+// Runs the CLI through the shell; `redirect` is appended (e.g. "2>&1").
+CliRun Cli(const std::string& args, const std::string& redirect = "2>/dev/null") {
+  const std::string command = Quoted(DLSLAM_CLI_PATH) + " " + args + " " + redirect;
+  CliRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return run;
+  char buffer[4096];
+  for (std::size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) run.output.append(buffer, n);
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+class EvalCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = dlslam::testing::MakeTempDir("eval_cli"); }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path Case(const std::string& name) { return dlslam::testing::FixturePath("eval/" + name); }
+  std::string Files(const std::string& name) {
+    return "--gt " + Quoted(Case(name) / "gt.txt") + " --est " + Quoted(Case(name) / "est.txt");
+  }
+  static nlohmann::json Expected(const fs::path& file) {
+    nlohmann::json doc;
+    std::ifstream(file) >> doc;
+    return doc.at("result");
+  }
+  static void ExpectStatsNear(const nlohmann::json& cpp, const nlohmann::json& ref) {
+    for (const char* key : {"rmse", "mean", "median", "std", "min", "max"}) {
+      const double r = ref.at(key);
+      EXPECT_NEAR(cpp.at(key).get<double>(), r, 1e-6 * std::max(1.0, std::abs(r))) << key;
+    }
+  }
+  fs::path dir_;
+};
+
+TEST_F(EvalCliTest, AteJsonMatchesTheReference) {
+  const CliRun run = Cli("eval ate " + Files("scale") + " --scale 2.5 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(run.output.starts_with("{\"pairs\": ")) << run.output;
+  const nlohmann::json cpp = nlohmann::json::parse(run.output);
+  const nlohmann::json ref = Expected(Case("scale") / "expected_ate.json");
+  EXPECT_EQ(cpp.at("pairs"), ref.at("pairs"));
+  ExpectStatsNear(cpp, ref);
+  EXPECT_EQ(cpp.size(), 7u);  // no extra keys
+}
+
+TEST_F(EvalCliTest, RpeJsonMatchesTheReference) {
+  const CliRun run = Cli("eval rpe " + Files("spin") + " --delta 20 --delta-unit deg --json");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json cpp = nlohmann::json::parse(run.output);
+  const nlohmann::json ref = Expected(Case("spin") / "expected_rpe_deg.json");
+  EXPECT_EQ(cpp.at("pairs"), ref.at("pairs"));
+  ExpectStatsNear(cpp.at("translation"), ref.at("translation"));
+  ExpectStatsNear(cpp.at("rotation_deg"), ref.at("rotation_deg"));
+}
+
+TEST_F(EvalCliTest, OffsetReachesTheComputation) {
+  const CliRun run = Cli("eval rpe " + Files("offset") + " --offset 0.35 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json ref = Expected(Case("offset") / "expected_rpe_s.json");
+  ExpectStatsNear(nlohmann::json::parse(run.output).at("translation"), ref.at("translation"));
+}
+
+TEST_F(EvalCliTest, TableByDefaultAndPlotsByExtension) {
+  const fs::path svg = dir_ / "ate.svg";
+  const fs::path png = dir_ / "rpe.png";
+  const CliRun ate = Cli("eval ate " + Files("handheld") + " --plot " + Quoted(svg));
+  ASSERT_EQ(ate.exit_code, 0) << ate.output;
+  EXPECT_THAT(ate.output, HasSubstr("rmse"));
+  EXPECT_THAT(ate.output, HasSubstr("652 pose pairs"));
+  std::ifstream svg_in(svg);
+  std::string head(5, '\0');
+  svg_in.read(head.data(), 5);
+  EXPECT_EQ(head, "<?xml");
+  const CliRun rpe = Cli("eval rpe " + Files("handheld") + " --plot " + Quoted(png));
+  ASSERT_EQ(rpe.exit_code, 0) << rpe.output;
+  EXPECT_THAT(rpe.output, HasSubstr("rotation [deg]"));
+  EXPECT_GT(fs::file_size(png), 1000u);
+}
+
+TEST_F(EvalCliTest, BadInputExitsNonZeroNamingTheProblem) {
+  const fs::path single = dir_ / "single.txt";
+  std::ofstream(single) << "1.0 0 0 0 0 0 0 1\n";
+  CliRun run = Cli("eval ate --gt " + Quoted(single) + " --est " + Quoted(Case("spin") / "est.txt"), "2>&1");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_THAT(run.output, HasSubstr("single.txt"));
+  EXPECT_THAT(run.output, HasSubstr("need at least 2"));
+
+  run = Cli("eval ate --gt missing.txt --est " + Quoted(Case("spin") / "est.txt"), "2>&1");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_THAT(run.output, HasSubstr("missing.txt"));
+
+  // The spin case starts at t = 1000 s, the handheld one at 1.3e9 s.
+  run = Cli("eval ate --gt " + Quoted(Case("spin") / "gt.txt") + " --est " +
+                Quoted(Case("handheld") / "est.txt"),
+            "2>&1");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_THAT(run.output, HasSubstr("no overlap in time between GT and EST within max-diff 0.02 s"));
+  EXPECT_THAT(run.output, HasSubstr("handheld"));
+
+  run = Cli("eval ate " + Files("spin") + " --plot " + Quoted(dir_ / "plot.jpg"), "2>&1");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_THAT(run.output, HasSubstr("expected .svg or .png"));
+  EXPECT_FALSE(fs::exists(dir_ / "plot.jpg"));
+
+  run = Cli("eval rpe " + Files("spin") + " --delta-unit mm", "2>&1");
+  EXPECT_NE(run.exit_code, 0);
+  run = Cli("eval rpe " + Files("spin") + " --delta -1", "2>&1");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_THAT(run.output, HasSubstr("delta must be > 0"));
+  run = Cli("eval ate " + Files("spin") + " --max-diff 0", "2>&1");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_THAT(run.output, HasSubstr("max_diff must be > 0"));
+}
+
+}  // namespace
