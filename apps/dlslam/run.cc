@@ -30,9 +30,6 @@ struct RunArgs {
 void Run(const RunArgs& args) {
   const io::RgbdSequence sequence = io::RgbdSequence::Open(args.sequence, args.sequence_options);
   const CameraIntrinsics& camera = sequence.camera();
-  spdlog::info("sequence {}: {} frames, camera {} ({}), depth factor {} ({})", args.sequence.string(),
-               sequence.size(), camera.name, sequence.camera_source(), camera.depth_factor,
-               sequence.depth_factor_source());
   SystemOptions options;
   options.sequential = args.sequential;
   SlamSystem slam(camera, options);
