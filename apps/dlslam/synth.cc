@@ -121,7 +121,7 @@ void AddSynthCommand(CLI::App& app) {
       ->capture_default_str();
   CLI::Option* frames = cmd->add_option("--frames", args->frames, "Number of frames (with --replay: at most; default all)")
                             ->capture_default_str()
-                            ->check(CLI::PositiveNumber);
+                            ->check(CLI::Range(1, 100000000));
   cmd->add_option("--seed", args->seed, "Seed: the same seed gives byte-identical files")->capture_default_str();
   cmd->add_option("--out", args->out, "Output folder (created; refuses a non-empty folder it did not write)")
       ->required();

@@ -122,6 +122,39 @@ TEST(Renderer, TypicalFramesAreRichInOrbFeatures) {
   }
 }
 
+// The texture is distinct, not repetitive: ORB matches between two frames
+// a sixth of a second apart are mostly where the ground truth (true depth and
+// poses) puts them.
+TEST(Renderer, OrbMatchesAgreeWithTheGroundTruth) {
+  const SynthSequence s(Options(Preset::kWalkingHalfsphere, 8, 120));
+  const CameraIntrinsics& camera = s.options().camera;
+  const RenderedFrame a = s.Render(100), b = s.Render(105);
+  const cv::Ptr<cv::ORB> orb = cv::ORB::create(1000);
+  std::vector<cv::KeyPoint> ka, kb;
+  cv::Mat da, db, grey_a, grey_b;
+  cv::cvtColor(a.colour, grey_a, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(b.colour, grey_b, cv::COLOR_BGR2GRAY);
+  orb->detectAndCompute(grey_a, cv::noArray(), ka, da);
+  orb->detectAndCompute(grey_b, cv::noArray(), kb, db);
+  std::vector<std::vector<cv::DMatch>> knn;
+  cv::BFMatcher(cv::NORM_HAMMING).knnMatch(da, db, knn, 2);
+  const SE3d b_from_a = b.world_from_cam.Inverse() * a.world_from_cam;
+  int tested = 0, correct = 0;
+  for (const auto& m : knn) {
+    if (m.size() < 2 || m[0].distance > 0.8 * m[1].distance) continue;  // Lowe's ratio test
+    const cv::Point2f pa = ka[static_cast<std::size_t>(m[0].queryIdx)].pt;
+    const cv::Point2f pb = kb[static_cast<std::size_t>(m[0].trainIdx)].pt;
+    const int u = static_cast<int>(std::lround(pa.x)), v = static_cast<int>(std::lround(pa.y));
+    if (a.mask.at<std::uint8_t>(v, u) != 0) continue;  // static world only
+    const Eigen::Vector3d in_b = b_from_a * camera.Unproject(Eigen::Vector2d(pa.x, pa.y), a.true_depth.at<float>(v, u));
+    const Eigen::Vector2d predicted = camera.Project(in_b);
+    ++tested;
+    correct += (predicted - Eigen::Vector2d(pb.x, pb.y)).norm() < 4.0;
+  }
+  EXPECT_GE(tested, 200);
+  EXPECT_GE(correct, 0.8 * tested);
+}
+
 TEST(Renderer, OptionsCheck) {
   RenderOptions o;
   EXPECT_NO_THROW(o.Check());
