@@ -1,8 +1,10 @@
 #pragma once
 // Seeded randomness for the synthetic sequences. Everything derives from
 // std::mt19937 engines seeded through std::seed_seq (both fully specified by
-// the standard), and the distributions below are our own, so a seed gives the
-// same sequence with any standard library. No global state.
+// the standard) and the distributions below are our own (the standard's are
+// implementation-defined). No global state. A seed gives byte-identical
+// output from one build; another compiler may evaluate two draws within one
+// function call's arguments in the other order and so draw another room.
 
 #include <cmath>
 #include <cstdint>
