@@ -18,6 +18,8 @@ Trajectory ReadTumTrajectory(const std::filesystem::path& path, const Trajectory
   trajectory.reserve(table.rows.size());
   int normalised = 0;
   int first_normalised_line = 0;
+  int duplicates = 0;
+  int first_duplicate_line = 0;
   for (const TextRow& row : table.rows) {
     if (row.fields.size() != 8) {
       throw InputError(path, row.line, "expected 8 values (timestamp tx ty tz qx qy qz qw), got {}",
@@ -36,7 +38,14 @@ Trajectory ReadTumTrajectory(const std::filesystem::path& path, const Trajectory
       pose.rotation.normalize();
       if (normalised++ == 0) first_normalised_line = row.line;
     }
-    if (!trajectory.empty() && !(pose.timestamp > trajectory.back().timestamp)) {
+    if (!trajectory.empty() && pose.timestamp == trajectory.back().timestamp) {
+      // Real TUM ground truth repeats a timestamp now and then (fr3
+      // walking_static, fr2 xyz); the TUM tools keep the last line, so do we.
+      if (duplicates++ == 0) first_duplicate_line = row.line;
+      trajectory.back() = pose;
+      continue;
+    }
+    if (!trajectory.empty() && pose.timestamp < trajectory.back().timestamp) {
       throw InputError(path, row.line, "timestamp {:.6f} is not after the previous one {:.6f}",
                        pose.timestamp, trajectory.back().timestamp);
     }
@@ -46,6 +55,10 @@ Trajectory ReadTumTrajectory(const std::filesystem::path& path, const Trajectory
     spdlog::warn("{}:{}: normalised {} quaternion(s) whose norm was off by more than {}",
                  path.string(), first_normalised_line, normalised,
                  options.quaternion_norm_tolerance);
+  }
+  if (duplicates > 0) {
+    spdlog::warn("{}:{}: {} repeated timestamp(s); kept the last pose of each, as the TUM tools do",
+                 path.string(), first_duplicate_line, duplicates);
   }
   if (trajectory.size() < options.min_poses) {
     throw InputError(path, 0, "has {} pose(s), need at least {}", trajectory.size(), options.min_poses);

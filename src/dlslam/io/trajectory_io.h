@@ -21,8 +21,10 @@ struct TrajectoryReadOptions {
 };
 
 // Throws InputError naming file and line for: a missing file, a line that is
-// not 8 numbers, a non-finite value, a zero quaternion, a timestamp not larger
-// than the one before, fewer than min_poses poses.
+// not 8 numbers, a non-finite value, a zero quaternion, a timestamp smaller
+// than the one before, fewer than min_poses poses. A timestamp equal to the
+// one before replaces that pose (with a warning), as in the TUM tools, whose
+// readers fill a dictionary keyed by timestamp.
 Trajectory ReadTumTrajectory(const std::filesystem::path& path,
                              const TrajectoryReadOptions& options = {});
 

@@ -1,0 +1,55 @@
+#pragma once
+// Where the camera is: the presets' hand-held-like motions (after the TUM
+// fr3 sequences of the same names) and replays of real trajectories. Every
+// path is expressed relative to its first pose and starts at the scene's
+// viewpoint: world_from_cam(t) = viewpoint * first_from_cam(t).
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "dlslam/data/trajectory.h"
+#include "dlslam/geometry/se3.h"
+#include "dlslam/synth/preset.h"
+
+namespace dlslam::synth {
+
+// A preset's camera motion relative to the first pose (camera frame of the
+// first pose: x right, y down, z forward). Smooth, with a seeded hand tremor.
+class CameraMotion {
+ public:
+  CameraMotion(Preset preset, std::uint32_t seed);
+  // first_from_cam at scene time t [s]; the identity plus tremor at t = 0.
+  SE3d FirstFromCam(double t) const;
+
+ private:
+  Preset preset_;
+  // Tremor: per degree of freedom three sinusoids (amplitude, frequency [Hz], phase).
+  double tremor_[6][3][3] = {};
+  double tremor_translation_m_ = 0.0;
+  double tremor_rotation_rad_ = 0.0;
+};
+
+// The camera path of a preset: `frames` poses at `fps` from `start_timestamp`
+// (timestamps rounded to microseconds, as TUM files store them).
+Trajectory PresetCameraPath(Preset preset, std::uint32_t seed, const SE3d& viewpoint, int frames, double fps,
+                            double start_timestamp);
+
+// The pose at time t: linear in translation, slerp in rotation between the
+// two poses around t; nullopt outside [first, last] timestamp.
+std::optional<SE3d> InterpolatePose(const Trajectory& trajectory, double t);
+
+struct ReplayPath {
+  Trajectory path;          // world_from_cam in the scene at the kept frame times
+  int dropped_before = 0;   // frame times before the trajectory's first pose
+  int dropped_after = 0;    // ... after its last pose
+};
+
+// Follows `trajectory` (world_from_cam in any world) at `frame_times`
+// (increasing): poses interpolated at each time inside its span, expressed
+// relative to the first kept one and placed at `viewpoint`. Empty
+// frame_times: the trajectory's span sampled at `fps` from its first pose.
+ReplayPath ReplayCameraPath(const Trajectory& trajectory, const std::vector<double>& frame_times,
+                            const SE3d& viewpoint, double fps = 30.0);
+
+}  // namespace dlslam::synth

@@ -1,1 +1,0 @@
-namespace dlslam {}  // replaced by the renderer
