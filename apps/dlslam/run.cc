@@ -11,23 +11,11 @@
 #include "dlslam/io/trajectory_io.h"
 #include "dlslam/util/check.h"
 #include "run_report.h"
+#include "run_sequence.h"
 
 namespace dlslam::app {
 
-namespace {
-
-struct RunArgs {
-  std::filesystem::path sequence;
-  std::filesystem::path out = "trajectory.txt";
-  std::filesystem::path keyframes;
-  std::filesystem::path report;
-  std::string mode = "orb";
-  bool sequential = false;
-  std::size_t max_frames = 0;
-  io::RgbdSequenceOptions sequence_options;
-};
-
-void Run(const RunArgs& args) {
+RunOutcome RunSequence(const RunArgs& args) {
   const io::RgbdSequence sequence = io::RgbdSequence::Open(args.sequence, args.sequence_options);
   const CameraIntrinsics& camera = sequence.camera();
   SystemOptions options;
@@ -79,9 +67,8 @@ void Run(const RunArgs& args) {
     io::WriteFileAtomically(args.report, [&](std::ostream& out) { out << text; });
     spdlog::info("wrote report {}", args.report.string());
   }
+  return {stats, evaluation};
 }
-
-}  // namespace
 
 void AddRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
@@ -100,7 +87,7 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("--settings", args->sequence_options.settings_file, "ORB-SLAM3-style settings YAML");
   cmd->add_option("--depth-factor", args->sequence_options.depth_factor, "Raw depth units per metre");
   cmd->add_option("--associations", args->sequence_options.associations_file, "RGB-depth association file");
-  cmd->callback([args] { Run(*args); });
+  cmd->callback([args] { RunSequence(*args); });
 }
 
 }  // namespace dlslam::app

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "commands.h"
+#include "synth_run.h"
 #include "dlslam/io/sequence_writer.h"
 #include "dlslam/io/text_table.h"
 #include "dlslam/io/trajectory_io.h"
@@ -20,19 +21,6 @@
 namespace dlslam::app {
 
 namespace {
-
-struct SynthArgs {
-  std::string preset = "walking_xyz";
-  int frames = 300;
-  std::uint32_t seed = 1;
-  std::filesystem::path out;
-  bool force = false;
-  std::filesystem::path replay;
-  std::filesystem::path timestamps;
-  bool no_noise = false;
-  bool no_ceiling = false;
-  int motion_blur = 1;
-};
 
 // The first column of an associations (or rgb.txt) file: the frame times.
 std::vector<double> ReadFrameTimes(const std::filesystem::path& path) {
@@ -48,6 +36,8 @@ std::vector<double> ReadFrameTimes(const std::filesystem::path& path) {
   if (times.empty()) throw InputError(path, 0, "holds no frame times");
   return times;
 }
+
+}  // namespace
 
 void RunSynth(const SynthArgs& args, bool frames_given) {
   synth::SynthOptions options;
@@ -110,8 +100,6 @@ void RunSynth(const SynthArgs& args, bool frames_given) {
   spdlog::info("wrote {} frames in {:.1f} s ({:.1f} ms/frame rendering, {:.1f} ms/frame writing)", sequence.size(),
                total_s, 1e3 * render_s / sequence.size(), 1e3 * (total_s - render_s) / sequence.size());
 }
-
-}  // namespace
 
 void AddSynthCommand(CLI::App& app) {
   auto args = std::make_shared<SynthArgs>();

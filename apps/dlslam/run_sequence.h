@@ -1,0 +1,32 @@
+#pragma once
+// SLAM on a sequence folder: `dlslam run` and the demo.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "dlslam/io/sequence.h"
+#include "run_report.h"
+
+namespace dlslam::app {
+
+struct RunArgs {
+  std::filesystem::path sequence;
+  std::filesystem::path out = "trajectory.txt";
+  std::filesystem::path keyframes;
+  std::filesystem::path report;
+  std::string mode = "orb";
+  bool sequential = false;
+  std::size_t max_frames = 0;
+  io::RgbdSequenceOptions sequence_options;
+};
+
+struct RunOutcome {
+  RunStats stats;
+  std::optional<RunEvaluation> evaluation;  // with ground truth
+};
+
+// Runs, writes the trajectory (and keyframes, report when asked), logs a summary.
+RunOutcome RunSequence(const RunArgs& args);
+
+}  // namespace dlslam::app
