@@ -50,9 +50,7 @@ WarpedImage WarpImage(const cv::Mat& source, double angle_deg, double scale, int
   return out;
 }
 
-double TransformScores::repeatability() const {
-  return Ratio(repeated, std::min(keypoints_a, keypoints_b));
-}
+double TransformScores::repeatability() const { return Ratio(repeated, keypoints_a); }
 double TransformScores::precision() const { return Ratio(correct_matches, matches); }
 double TransformScores::recall() const { return Ratio(correct_matches, repeated); }
 

@@ -31,7 +31,7 @@ struct TransformScores {
   int repeated = 0;         // source keypoints with a warped keypoint within the tolerance
   int matches = 0;          // matches that pass the matcher's tests
   int correct_matches = 0;  // of those, the ones within the tolerance of the true position
-  double repeatability() const;  // repeated / min(keypoints_a, keypoints_b)
+  double repeatability() const;  // repeated / keypoints_a
   double precision() const;      // correct_matches / matches
   double recall() const;         // correct_matches / repeated
 };
