@@ -50,8 +50,9 @@ WarpedImage WarpImage(const cv::Mat& source, double angle_deg, double scale, int
   return out;
 }
 
-double TransformScores::repeatability() const {
-  return Ratio(repeated, std::min(keypoints_a, keypoints_b));
+double TransformScores::repeatability() const { return Ratio(repeated, keypoints_a); }
+double TransformScores::chance_repeatability() const {
+  return keypoints_a > 0 ? repeated_by_chance / keypoints_a : 0.0;
 }
 double TransformScores::precision() const { return Ratio(correct_matches, matches); }
 double TransformScores::recall() const { return Ratio(correct_matches, repeated); }
@@ -78,9 +79,14 @@ TransformScores ScoreUnderTransform(const Features& a, const Features& b, const 
     const cv::Point2f& q = b.keypoints[static_cast<size_t>(j)].pt;
     return (p.x - q.x) * (p.x - q.x) + (p.y - q.y) * (p.y - q.y) <= tol2;
   };
+  const auto has_neighbour = [&](const cv::Point2d& p) {
+    return std::any_of(rows_b.begin(), rows_b.end(), [&](int j) { return near(p, j); });
+  };
   for (const cv::Point2d& p : mapped_a) {
-    if (std::any_of(rows_b.begin(), rows_b.end(), [&](int j) { return near(p, j); })) {
-      ++s.repeated;
+    s.repeated += has_neighbour(p);
+    for (const cv::Point2d shift : {cv::Point2d(14, 14), cv::Point2d(-14, 14), cv::Point2d(14, -14),
+                                    cv::Point2d(-14, -14)}) {
+      s.repeated_by_chance += 0.25 * has_neighbour(p + shift);
     }
   }
   cv::Mat desc_a(static_cast<int>(rows_a.size()), a.descriptors.cols, a.descriptors.type());

@@ -29,9 +29,13 @@ struct TransformScores {
   int keypoints_a = 0;      // keypoints of the source image that land on the valid canvas
   int keypoints_b = 0;      // keypoints of the warped image on its valid area
   int repeated = 0;         // source keypoints with a warped keypoint within the tolerance
+  // The same count for positions shifted by 20 px (mean of 4 diagonal
+  // shifts): repeatability by chance, higher for clustered keypoints.
+  double repeated_by_chance = 0.0;
   int matches = 0;          // matches that pass the matcher's tests
   int correct_matches = 0;  // of those, the ones within the tolerance of the true position
-  double repeatability() const;  // repeated / min(keypoints_a, keypoints_b)
+  double repeatability() const;            // repeated / keypoints_a
+  double chance_repeatability() const;     // repeated_by_chance / keypoints_a
   double precision() const;      // correct_matches / matches
   double recall() const;         // correct_matches / repeated
 };

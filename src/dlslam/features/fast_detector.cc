@@ -204,12 +204,17 @@ void DetectGridFast(const cv::Mat& image, const cv::Rect& area, const GridFastPa
   SuppressNonMaxima(scratch.scores, scratch.candidates, area, params.threshold_initial, corners);
   if (params.threshold_min == params.threshold_initial) return;
 
+  // Cells: n equal-ish slices per axis, slice c starting at c * size / n.
   const int n_cols = std::max(1, (area.width + params.cell_size / 2) / params.cell_size);
   const int n_rows = std::max(1, (area.height + params.cell_size / 2) / params.cell_size);
+  const auto slice_of = [](int offset, int size, int n) {
+    // The largest c with c * size / n <= offset (integer division as above).
+    return ((offset + 1) * n + size - 1) / size - 1;
+  };
   std::vector<int> cell_counts(static_cast<size_t>(n_cols * n_rows), 0);
   for (size_t i = first; i < corners.size(); ++i) {
-    const int col = (corners[i].x - area.x) * n_cols / area.width;
-    const int row = (corners[i].y - area.y) * n_rows / area.height;
+    const int col = slice_of(corners[i].x - area.x, area.width, n_cols);
+    const int row = slice_of(corners[i].y - area.y, area.height, n_rows);
     ++cell_counts[static_cast<size_t>(row * n_cols + col)];
   }
   for (int row = 0; row < n_rows; ++row) {

@@ -193,5 +193,24 @@ TEST(DetectGridFastTest, FallsBackToTheMinimumThresholdInEmptyCells) {
   }
 }
 
+TEST(DetectGridFastTest, ListsEachPixelOnceWhateverTheCellSize) {
+  // Low-contrast right half: many cells fall back, next to cells that did not.
+  cv::Mat image = TestImage().clone();
+  cv::Mat right = image(cv::Rect(image.cols / 2, 0, image.cols / 2, image.rows));
+  right.convertTo(right, CV_8U, 0.2, 100);
+  FastScratch scratch;
+  for (int cell : {8, 13, 30, 31, 47}) {
+    for (const cv::Rect& area : {cv::Rect(19, 19, image.cols - 38, image.rows - 38),
+                                 cv::Rect(23, 21, 101, 77)}) {
+      std::vector<FastCorner> corners;
+      DetectGridFast(image, area, {20, 7, cell}, scratch, corners);
+      std::set<std::pair<int, int>> unique;
+      for (const FastCorner& c : corners) unique.emplace(c.x, c.y);
+      EXPECT_EQ(unique.size(), corners.size()) << "cell " << cell << " area " << area;
+      EXPECT_GT(corners.size(), 10u);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dlslam::features

@@ -19,6 +19,11 @@ struct Nearest {
   int second = std::numeric_limits<int>::max();
 };
 
+// The hot loop: on x86 a clone with the POPCNT instruction (several times faster than
+// the portable bit count) is picked at run time when the CPU has it.
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target_clones("popcnt", "default")))
+#endif
 Nearest FindNearest(const uchar* descriptor, const cv::Mat& candidates) {
   Nearest n;
   for (int j = 0; j < candidates.rows; ++j) {

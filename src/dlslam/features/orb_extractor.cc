@@ -64,8 +64,7 @@ void OrbExtractor::DetectLevel(int level, const cv::Mat& exclusion_mask) {
   DistributeQuadtree(area, level_targets_[l], corners);
 }
 
-void OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask,
-                           OrbFeatures& out) {
+void OrbExtractor::PrepareImage(const cv::Mat& image) {
   DLSLAM_CHECK(!image.empty(), "ORB extraction needs a non-empty image");
   DLSLAM_CHECK(image.depth() == CV_8U && (image.channels() == 1 || image.channels() == 3 ||
                                           image.channels() == 4),
@@ -75,18 +74,30 @@ void OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask,
   DLSLAM_CHECK(image.cols >= min_side && image.rows >= min_side,
                "image {}x{} too small for ORB: needs {} px or more on each side (edge border {})",
                image.cols, image.rows, min_side, options_.edge_border);
-  if (!exclusion_mask.empty()) {
-    DLSLAM_CHECK(exclusion_mask.type() == CV_8UC1 && exclusion_mask.size() == image.size(),
-                 "exclusion mask must be CV_8UC1 {}x{}, got {} {}x{}", image.cols, image.rows,
-                 cv::typeToString(exclusion_mask.type()), exclusion_mask.cols,
-                 exclusion_mask.rows);
-  }
   if (image.channels() == 1) {
     BuildPyramid(image);
   } else {
     cv::cvtColor(image, grey_, image.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
     BuildPyramid(grey_);
   }
+}
+
+void OrbExtractor::SmoothLevel(size_t level) {
+  // 7x7 Gaussian, sigma 2. sepFilter2D rather than GaussianBlur: OpenCV
+  // 4.6's bit-exact 8-bit GaussianBlur path is about 25% slower here.
+  cv::sepFilter2D(pyramid_[level], smoothed_[level], CV_8U, blur_kernel_, blur_kernel_,
+                  cv::Point(-1, -1), 0.0, cv::BORDER_REFLECT_101);
+}
+
+void OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask,
+                           OrbFeatures& out) {
+  if (!exclusion_mask.empty()) {
+    DLSLAM_CHECK(exclusion_mask.type() == CV_8UC1 && exclusion_mask.size() == image.size(),
+                 "exclusion mask must be CV_8UC1 {}x{}, got {} {}x{}", image.cols, image.rows,
+                 cv::typeToString(exclusion_mask.type()), exclusion_mask.cols,
+                 exclusion_mask.rows);
+  }
+  PrepareImage(image);
 
   size_t total = 0;
   for (int level = 0; level < options_.n_levels; ++level) {
@@ -104,10 +115,7 @@ void OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask,
       smoothed_[level].release();
       continue;
     }
-    // 7x7 Gaussian, sigma 2. sepFilter2D rather than GaussianBlur: OpenCV
-    // 4.6's bit-exact 8-bit GaussianBlur path is about 25% slower here.
-    cv::sepFilter2D(pyramid_[level], smoothed_[level], CV_8U, blur_kernel_, blur_kernel_,
-                    cv::Point(-1, -1), 0.0, cv::BORDER_REFLECT_101);
+    SmoothLevel(level);
     const auto scale = static_cast<float>(level_scales_[level]);
     for (const FastCorner& c : corners) {
       const float angle = IntensityCentroidAngle(pyramid_[level], c.x, c.y);
@@ -118,6 +126,31 @@ void OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask,
                                  static_cast<float>(c.score), static_cast<int>(level));
     }
   }
+}
+
+OrbFeatures OrbExtractor::Describe(const cv::Mat& image, const std::vector<cv::KeyPoint>& keypoints) {
+  PrepareImage(image);
+  for (cv::Mat& level : smoothed_) level.release();
+  OrbFeatures out;
+  out.descriptors.create(0, kDescriptorBytes, CV_8UC1);
+  cv::Mat row(1, kDescriptorBytes, CV_8UC1);
+  for (const cv::KeyPoint& k : keypoints) {
+    if (k.octave < 0 || k.octave >= options_.n_levels) continue;
+    const auto level = static_cast<size_t>(k.octave);
+    const cv::Mat& grey = pyramid_[level];
+    const double scale = level_scales_[level];
+    const int x = static_cast<int>(std::lround(k.pt.x / scale));
+    const int y = static_cast<int>(std::lround(k.pt.y / scale));
+    if (grey.empty() || x < kPatchRadius || y < kPatchRadius || x >= grey.cols - kPatchRadius ||
+        y >= grey.rows - kPatchRadius) {
+      continue;
+    }
+    if (smoothed_[level].empty()) SmoothLevel(level);
+    brief_.Compute(smoothed_[level], x, y, k.angle, row.ptr<uchar>());
+    out.keypoints.push_back(k);
+    out.descriptors.push_back(row);
+  }
+  return out;
 }
 
 }  // namespace dlslam::features

@@ -45,6 +45,12 @@ class OrbExtractor {
   // The same, reusing `out`'s memory.
   void Extract(const cv::Mat& image, const cv::Mat& exclusion_mask, OrbFeatures& out);
 
+  // Descriptors of given keypoints (level = octave, position pt / scale
+  // rounded, angle as given; e.g. another detector's) on this extractor's
+  // smoothed pyramid of `image`. Keypoints whose level does not exist or whose
+  // patch leaves the level are dropped. Throws like Extract for a bad image.
+  OrbFeatures Describe(const cv::Mat& image, const std::vector<cv::KeyPoint>& keypoints);
+
   const OrbOptions& options() const { return options_; }
   // scale_factor^level for each level.
   const std::vector<double>& level_scales() const { return level_scales_; }
@@ -55,7 +61,9 @@ class OrbExtractor {
   const std::vector<cv::Mat>& smoothed_pyramid() const { return smoothed_; }
 
  private:
+  void PrepareImage(const cv::Mat& image);  // checks, grey, pyramid
   void BuildPyramid(const cv::Mat& grey);
+  void SmoothLevel(size_t level);
   void DetectLevel(int level, const cv::Mat& exclusion_mask);
 
   OrbOptions options_;

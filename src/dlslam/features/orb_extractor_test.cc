@@ -86,6 +86,18 @@ TEST(OrbExtractorTest, ExclusionMaskDropsKeypointsAndMovesTheBudget) {
   }
 }
 
+TEST(OrbExtractorTest, DescribeReproducesTheDescriptorsOfGivenKeypoints) {
+  const cv::Mat image = testing::SyntheticTexture();
+  OrbExtractor orb;
+  const OrbFeatures f = orb.Extract(image);
+  std::vector<cv::KeyPoint> keypoints = f.keypoints;
+  keypoints.emplace_back(5.0f, 5.0f, 31.0f, 0.0f, 1.0f, 0);     // patch leaves the image
+  keypoints.emplace_back(300.0f, 200.0f, 31.0f, 0.0f, 1.0f, 9);  // no such level
+  const OrbFeatures d = orb.Describe(image, keypoints);
+  ASSERT_EQ(d.keypoints.size(), f.keypoints.size());
+  EXPECT_EQ(cv::norm(d.descriptors, f.descriptors, cv::NORM_HAMMING), 0.0);
+}
+
 TEST(OrbExtractorTest, RejectsBadInput) {
   OrbExtractor orb;
   const cv::Mat image = testing::SyntheticTexture();

@@ -16,9 +16,10 @@ struct PatternTest {
 };
 
 inline constexpr int kPatternTests = 256;
-// The learned tests lie in this disc [px], so that rotated and rounded they
-// stay inside the 31 x 31 patch (the paper's 5 x 5 sub-window centres).
-inline constexpr int kPatternRadius = 13;
+// Test points lie in this disc [px], so that rotated and rounded they stay
+// inside the 31 x 31 patch (radius 15 matched better than the paper's 13,
+// the centres of 5 x 5 sub-windows; see docs/features.md).
+inline constexpr int kPatternRadius = 15;
 
 // The learned pattern (orb_pattern_learned.h).
 std::span<const PatternTest> LearnedOrbPattern();

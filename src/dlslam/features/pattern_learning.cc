@@ -32,11 +32,21 @@ TestOutcomes Outcomes(const OrientedPatches& patches, const PatternTest& test) {
   return t;
 }
 
+// Patches where both tests are 1. The hot loop of the greedy search: on x86
+// a clone with the POPCNT instruction is picked at run time when the CPU has it.
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target_clones("popcnt", "default")))
+#endif
+int CountBoth(const uint64_t* a, const uint64_t* b, size_t n_words) {
+  int both = 0;
+  for (size_t w = 0; w < n_words; ++w) both += __builtin_popcountll(a[w] & b[w]);
+  return both;
+}
+
 // Pearson correlation of two binary tests; 0 when one of them is constant.
 double Correlation(const TestOutcomes& a, const TestOutcomes& b, int n) {
   if (a.stddev == 0.0 || b.stddev == 0.0) return 0.0;
-  int both = 0;
-  for (size_t w = 0; w < a.bits.size(); ++w) both += std::popcount(a.bits[w] & b.bits[w]);
+  const int both = CountBoth(a.bits.data(), b.bits.data(), a.bits.size());
   return (static_cast<double>(both) / n - a.mean * b.mean) / (a.stddev * b.stddev);
 }
 

@@ -10,6 +10,9 @@ struct Node {
   double x0, y0, x1, y1;  // box [x0, x1) x [y0, y1) in pixels
   int begin, end;         // corners[begin, end) lie in the box
   int count() const { return end - begin; }
+  // Corners lie on integer pixels, so a box of at most 1 x 1 px holds one
+  // pixel: splitting it further could never separate (duplicate) corners.
+  bool splittable() const { return count() > 1 && (x1 - x0 > 1.0 || y1 - y0 > 1.0); }
 };
 
 using CornerIt = std::vector<FastCorner>::iterator;
@@ -66,11 +69,11 @@ void DistributeQuadtree(const cv::Rect& area, int target, std::vector<FastCorner
     // first, stopping as soon as there are enough nodes.
     std::stable_sort(nodes.begin(), nodes.end(),
                      [](const Node& a, const Node& b) { return a.count() > b.count(); });
-    if (nodes.front().count() <= 1) break;
+    if (std::none_of(nodes.begin(), nodes.end(), [](const Node& n) { return n.splittable(); })) break;
     next.clear();
     size_t n_nodes = nodes.size();
     for (const Node& node : nodes) {
-      if (node.count() > 1 && n_nodes < static_cast<size_t>(target)) {
+      if (node.splittable() && n_nodes < static_cast<size_t>(target)) {
         const size_t before = next.size();
         Split(node, corners, next);
         n_nodes += next.size() - before - 1;

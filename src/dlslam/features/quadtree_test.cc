@@ -64,5 +64,12 @@ TEST(DistributeQuadtreeTest, ReachesTheTargetOnDenseUniformCorners) {
   }
 }
 
+TEST(DistributeQuadtreeTest, TerminatesOnDuplicateCorners) {
+  std::vector<FastCorner> corners(50, FastCorner{33, 44, 9});
+  corners.push_back({200, 100, 5});
+  DistributeQuadtree(cv::Rect(0, 0, 300, 200), 10, corners);
+  EXPECT_EQ(corners.size(), 2u);
+}
+
 }  // namespace
 }  // namespace dlslam::features

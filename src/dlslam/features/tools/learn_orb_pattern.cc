@@ -15,6 +15,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <random>
@@ -109,6 +110,7 @@ int main(int argc, char** argv) {
     const std::vector<fs::path> train_images = ListImages(train_dirs, train_every);
     const OrientedPatches train = CollectPatches(train_images, per_image, max_side, rng);
     fmt::print("training: {} images, {} patches\n", train_images.size(), train.size());
+    std::fflush(stdout);
     const LearnedPattern learned = LearnPattern(train, learn);
     fmt::print("picked {} of {} candidates at |correlation| <= {:.2f}\n", learned.tests.size(),
                learned.candidates, learned.correlation_threshold);
