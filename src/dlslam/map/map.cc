@@ -68,7 +68,7 @@ void Map::RefreshPoint(MapPoint& p) const {
     int best_median = 1 << 30;
     for (std::size_t i = 0; i < descriptors.size(); ++i) {
       std::vector<int> d;
-      for (std::size_t j = 0; j < descriptors.size(); ++j) d.push_back(DescriptorDistance(descriptors[i].data(), descriptors[j].data()));
+      for (std::size_t j = 0; j < descriptors.size(); ++j) d.push_back(HammingDistance(descriptors[i].data(), descriptors[j].data()));
       std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
       if (d[d.size() / 2] < best_median) {
         best_median = d[d.size() / 2];

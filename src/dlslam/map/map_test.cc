@@ -67,12 +67,12 @@ TEST(Map, PredictOctave) {
   EXPECT_EQ(PredictOctave(5.0, 2.0, p), 0);
 }
 
-TEST(Map, DescriptorDistance) {
+TEST(Map, HammingDistanceOfDescriptors) {
   Descriptor a{}, b{};
-  EXPECT_EQ(DescriptorDistance(a.data(), b.data()), 0);
+  EXPECT_EQ(HammingDistance(a.data(), b.data()), 0);
   b[0] = 0xFF;
   b[31] = 0x01;
-  EXPECT_EQ(DescriptorDistance(a.data(), b.data()), 9);
+  EXPECT_EQ(HammingDistance(a.data(), b.data()), 9);
 }
 
 }  // namespace

@@ -5,8 +5,6 @@
 #include <Eigen/Core>
 
 #include <array>
-#include <bit>
-#include <cstring>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -14,6 +12,7 @@
 #include <vector>
 
 #include "dlslam/data/frame.h"
+#include "dlslam/features/matching.h"
 #include "dlslam/geometry/se3.h"
 
 namespace dlslam {
@@ -27,16 +26,7 @@ using Descriptor = std::array<std::uint8_t, 32>;  // 256-bit ORB descriptor
 Descriptor DescriptorOf(const Frame& frame, std::size_t keypoint);
 
 // Hamming distance between two 256-bit descriptors.
-inline int DescriptorDistance(const std::uint8_t* a, const std::uint8_t* b) {
-  int d = 0;
-  for (int i = 0; i < 32; i += 8) {
-    std::uint64_t x, y;
-    std::memcpy(&x, a + i, 8);
-    std::memcpy(&y, b + i, 8);
-    d += std::popcount(x ^ y);
-  }
-  return d;
-}
+using features::HammingDistance;
 
 struct MapPoint {
   MapPointId id = kNoId;

@@ -83,7 +83,7 @@ ProjectionMatchStats SearchByProjection(const Frame& frame, const SE3d& cam_from
       if ((*matches)[idx] != kNoId && best_distance[idx] == 256) continue;  // taken before this search
       const FrameKeypoint& k = frame.keypoint(idx);
       if (k.right_u >= 0 && std::abs(right_u - k.right_u) > radius) continue;
-      const int d = DescriptorDistance(p.descriptor.data(), frame.descriptor(idx));
+      const int d = HammingDistance(p.descriptor.data(), frame.descriptor(idx));
       if (d < best) {
         second = best;
         second_octave = best_octave;
@@ -118,7 +118,7 @@ std::vector<MapPointId> MatchToKeyFrame(const Frame& frame, const Frame& keyfram
     int best = 256, second = 256, best_idx = -1;
     for (std::size_t i = 0; i < frame.size(); ++i) {
       if (frame.ignored(i)) continue;
-      const int d = DescriptorDistance(keyframe_frame.descriptor(k), frame.descriptor(i));
+      const int d = HammingDistance(keyframe_frame.descriptor(k), frame.descriptor(i));
       if (d < best) {
         second = best;
         best = d;
