@@ -14,6 +14,10 @@ esac
 cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDLSLAM_SANITIZE="$kind" \
   -DDLSLAM_BUILD_BENCHMARKS=OFF
 cmake --build "$dir" --parallel "$(nproc)"
-export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
+# Third-party reports we cannot fix are suppressed, each with its reason, in
+# scripts/sanitizers/*.supp (absolute paths: tests run from their own folders).
+supp="$PWD/scripts/sanitizers"
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$supp/tsan.supp"
 ctest --test-dir "$dir" --output-on-failure --parallel "$(nproc)" "$@"

@@ -92,8 +92,8 @@ class Map {
   // (found / visible < min_found_ratio) or that too few keyframes observe
   // once two keyframes have passed. Returns how many were removed.
   int CullRecentPoints(KeyFrameId current, int min_observations = 3, double min_found_ratio = 0.25);
-  // Removes covisible neighbours of `current` (never keyframe 0 nor
-  // `current`) whose close points are nearly all (redundancy) seen by at
+  // Removes covisible neighbours of `current` (never keyframe 0, `current`
+  // or a newer one) whose close points are nearly all (redundancy) seen by at
   // least min_views other keyframes at the same or a finer scale. Returns them.
   std::vector<KeyFrameId> CullRedundantKeyFrames(KeyFrameId current, double close_depth, double redundancy = 0.9,
                                                  int min_views = 3);

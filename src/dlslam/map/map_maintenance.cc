@@ -98,7 +98,11 @@ std::vector<KeyFrameId> Map::CullRedundantKeyFrames(KeyFrameId current, double c
   std::vector<KeyFrameId> candidates;
   for (const auto& [other, w] : keyframes_.at(current).covisibility) candidates.push_back(other);
   for (KeyFrameId id : candidates) {
-    if (id == 0 || id == current || !keyframes_.count(id)) continue;
+    // Keyframes newer than `current` have not been through local mapping yet
+    // (ids grow and the queue is FIFO). Tracking may still be inserting one:
+    // it links the keyframe into the covisibility graph and then reads it
+    // back, so culling it here would pull it from under the tracking thread.
+    if (id == 0 || id >= current || !keyframes_.count(id)) continue;
     const KeyFrame& kf = keyframes_.at(id);
     int close_points = 0, redundant = 0;
     for (std::size_t i = 0; i < kf.points.size(); ++i) {

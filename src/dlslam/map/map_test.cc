@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <vector>
+
 #include "tests/support/landmark_scene.h"
 
 namespace dlslam {
@@ -57,6 +60,37 @@ TEST(Map, PointsObservationsAndCovisibility) {
   const double d = (views[0].position - Pose(0, 0).Inverse().translation()).norm();
   EXPECT_LE(views[0].min_distance, d);
   EXPECT_GE(views[0].max_distance, d * 0.999);
+}
+
+// Five keyframes at one pose, all seeing the same points: each one is
+// redundant. Culling around keyframe 2 may remove the older keyframe 1 but
+// never keyframe 0, 2 itself, or 3 and 4, which local mapping has not
+// processed yet (in the threaded system tracking may still be inserting them).
+TEST(Map, CullingSparesKeyFramesNotYetLocallyMapped) {
+  const auto scene = testing::LandmarkScene::Room(1500, 3);
+  Map map;
+  std::map<int, MapPointId> point_of_landmark;
+  for (int k = 0; k < 5; ++k) {
+    std::vector<int> landmarks;
+    const KeyFrameId id =
+        map.AddKeyFrame(scene.MakeFrame(Pose(0, 0), 0.1 * k, 10 + k, 0, 0, &landmarks), Pose(0, 0));
+    ASSERT_EQ(id, static_cast<KeyFrameId>(k));
+    for (std::size_t i = 0; i < landmarks.size(); ++i) {
+      const auto it = point_of_landmark.find(landmarks[i]);
+      if (it == point_of_landmark.end()) {
+        point_of_landmark[landmarks[i]] = map.AddMapPoint(scene.points[landmarks[i]], id, static_cast<int>(i));
+      } else {
+        ASSERT_TRUE(map.AddObservation(it->second, id, static_cast<int>(i)));
+      }
+    }
+    map.UpdateConnections(id);
+  }
+  ASSERT_GT(point_of_landmark.size(), 100u);
+  const std::vector<KeyFrameId> culled = map.CullRedundantKeyFrames(2, /*close_depth=*/10.0);
+  EXPECT_EQ(culled, std::vector<KeyFrameId>{1});
+  std::vector<KeyFrameId> left;
+  for (const KeyFramePose& k : map.KeyFramePoses()) left.push_back(k.id);
+  EXPECT_EQ(left, (std::vector<KeyFrameId>{0, 2, 3, 4}));
 }
 
 TEST(Map, PredictOctave) {
