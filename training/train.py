@@ -57,6 +57,8 @@ def parse_args(argv=None):
     ap.add_argument('--threads', type=int, default=2)
     ap.add_argument('--seed', type=int, default=0)
     ap.add_argument('--max-minutes', type=float, default=0, help='stop cleanly (checkpoint) after this long')
+    ap.add_argument('--resume-from', help='a committed full training state (training/checkpoints/*_state.pt): '
+                    'copied to runs/<run>/last.pt when that does not exist, then resumed exactly')
     ap.add_argument('--one-batch', action='store_true', help='smoke test: one tiny step + resume check')
     return ap.parse_args(argv)
 
@@ -107,11 +109,13 @@ def lr_at(step, args):
     return args.lr * warm * (1 - step / args.steps) ** 0.9
 
 
-def loss_fn(logits, label, teacher_logp, distill):
+def loss_fn(logits, label, teacher_logp, distill, teacher_weight=None):
     ce = F.cross_entropy(logits, label, ignore_index=IGNORE)
     if distill <= 0:
         return ce, ce.detach(), torch.zeros(())
     valid = (label != IGNORE).float()
+    if teacher_weight is not None:   # samples without cached teacher logits take no part in distillation
+        valid = valid * teacher_weight.view(-1, 1, 1)
     log_s = F.log_softmax(logits, dim=1)
     kl = (teacher_logp.exp() * (teacher_logp - log_s)).sum(1)
     kl = (kl * valid).sum() / valid.sum().clamp(min=1)
@@ -144,7 +148,7 @@ class SyntheticDataset(torch.utils.data.Dataset):
         g = torch.Generator().manual_seed(self.seed * 100003 + i)
         h, w = self.crop
         return (torch.rand(3, h, w, generator=g) * 2 - 1, torch.randint(0, self.n, (h, w), generator=g),
-                torch.log_softmax(torch.randn(self.n, h, w, generator=g), 0))
+                torch.log_softmax(torch.randn(self.n, h, w, generator=g), 0), torch.tensor(1.0))
 
 
 def available_rows(split):
@@ -178,8 +182,8 @@ def evaluate(model, args):
     rows = available_rows('val') if args.one_batch else read_split('val')
     if not rows:
         return {'score': -0.5}, 'no validation data (smoke test without shared data)'
-    if args.max_val:
-        rows = rows[::max(1, len(rows) // args.max_val)][:args.max_val]
+    if args.max_val and args.max_val < len(rows):   # evenly spread, so every source stays represented
+        rows = [rows[i] for i in np.linspace(0, len(rows) - 1, args.max_val).round().astype(int)]
     model.eval()
     s = run_eval(torch_predictor(model), rows, tuple(args.input), [c['name'] for c in load_classes()])
     model.train()
@@ -195,6 +199,8 @@ def train(args):
     last, best_path = os.path.join(run_dir, 'last.pt'), os.path.join(run_dir, 'best.pt')
     model = build_model(args.preset, num_classes=len(load_classes()), aspp=args.aspp)
     step, best = 0, -1.0
+    if args.resume_from and not os.path.exists(last):
+        shutil.copyfile(args.resume_from, last)
     if os.path.exists(last):
         ck = torch.load(last, map_location='cpu')
         model.load_state_dict(ck['model'])
@@ -220,7 +226,7 @@ def train(args):
     set_frozen(model, args.freeze_units, frozen)
     t0, t_log, start, seen = time.time(), time.time(), step, 0
     sums = np.zeros(3)
-    for x, label, teacher_logp in data_loader(args, step):
+    for x, label, teacher_logp, teacher_w in data_loader(args, step):
         if frozen and step >= args.freeze_steps:
             set_frozen(model, args.freeze_units, False)
             frozen = False
@@ -228,7 +234,7 @@ def train(args):
         lr = lr_at(step, args)
         for g in opt.param_groups:
             g['lr'] = lr * g['lr_mult']
-        loss, ce, kl = loss_fn(model(x), label, teacher_logp, args.distill)
+        loss, ce, kl = loss_fn(model(x), label, teacher_logp, args.distill, teacher_w)
         opt.zero_grad(set_to_none=True)
         loss.backward()
         opt.step()

@@ -36,7 +36,13 @@ class Sample:
             if m is None or m.shape != self.image.shape[:2]:
                 raise IOError(f'bad mask {mask_rel} for {self.image_rel}')
             self.mask = m
-        self.logp, self.teacher_hw = load_cached(self.image_rel)
+        try:
+            self.logp, self.teacher_hw = load_cached(self.image_rel)
+            self.has_teacher = True
+        except FileNotFoundError:
+            # not cached yet (teacher_cache.py still running): uniform targets, excluded from distillation
+            self.logp = np.full((3, 2, 2), np.log(1 / 3), np.float32)
+            self.teacher_hw, self.has_teacher = self.image.shape[:2], False
 
     def warped(self, m33, out_hw):
         """(image, person mask bool or None, valid bool, teacher logp) seen through output->image map m33."""
@@ -85,13 +91,14 @@ class TrainDataset(Dataset):
         s = self._sample(rows[rng.integers(len(rows))])
         m = random_map(rng, s.image.shape[:2], self.input_hw, self.crop_hw)
         img, person, valid, logp = s.warped(m, self.crop_hw)
-        return self._finish(rng, img, person, valid, logp)
+        return self._finish(rng, img, person, valid, logp, s.has_teacher)
 
     def _pasted(self, rng):
         bg = self._sample(self.rows['kitchen'][rng.integers(len(self.rows['kitchen']))])
         img, _, valid, logp = bg.warped(random_map(rng, bg.image.shape[:2], self.input_hw, self.crop_hw),
                                         self.crop_hw)
         person = np.zeros(self.crop_hw, bool)
+        has_teacher = bg.has_teacher
         for _ in range(1 + (rng.random() < 0.3)):
             p = self._sample(self.people[rng.integers(len(self.people))])
             # the person photo at 0.4-1.1 of the frame, anywhere: no border padding visible, only its mask
@@ -102,12 +109,13 @@ class TrainDataset(Dataset):
             inside = alpha[..., 0] > 0.5
             person |= inside
             logp = np.where(inside[None], p_logp, logp)
-        return self._finish(rng, img, person, valid, logp)
+            has_teacher = has_teacher and p.has_teacher
+        return self._finish(rng, img, person, valid, logp, has_teacher)
 
-    def _finish(self, rng, img, person, valid, logp):
+    def _finish(self, rng, img, person, valid, logp, has_teacher):
         label = labels_from(person, valid, logp, self.num_classes)
         return to_tensor(photometric(rng, img)), torch.from_numpy(label.astype(np.int64)), \
-            torch.from_numpy(np.ascontiguousarray(logp))
+            torch.from_numpy(np.ascontiguousarray(logp)), torch.tensor(float(has_teacher))
 
 
 class EvalDataset(Dataset):
