@@ -59,6 +59,7 @@ def parse_args(argv=None):
     ap.add_argument('--max-minutes', type=float, default=0, help='stop cleanly (checkpoint) after this long')
     ap.add_argument('--resume-from', help='a committed full training state (training/checkpoints/*_state.pt): '
                     'copied to runs/<run>/last.pt when that does not exist, then resumed exactly')
+    ap.add_argument('--stop-after', type=int, default=0, help='stop after this many steps in this invocation')
     ap.add_argument('--one-batch', action='store_true', help='smoke test: one tiny step + resume check')
     return ap.parse_args(argv)
 
@@ -172,8 +173,10 @@ def data_loader(args, start_step):
     else:
         ds = TrainDataset(read_split('train'), tuple(args.input), tuple(args.crop), args.seed, num_classes=n)
     order = range(start_step * args.batch, args.steps * args.batch)
+    # its own generator: creating the iterator must not draw from the global RNG (dropout), or a resumed
+    # run would see different dropout masks from an uninterrupted one
     return DataLoader(ds, batch_size=args.batch, sampler=order, num_workers=args.workers,
-                      persistent_workers=args.workers > 0)
+                      persistent_workers=args.workers > 0, generator=torch.Generator().manual_seed(args.seed))
 
 
 def evaluate(model, args):
@@ -246,8 +249,9 @@ def train(args):
             print(f'step {step}/{args.steps} loss {sums[0] / n:.4f} ce {sums[1] / n:.4f} kl {sums[2] / n:.4f} '
                   f'lr {lr:.2e} {(time.time() - t_log) / n:.2f} s/step', flush=True)
             sums[:], t_log, seen = 0, time.time(), 0
-        out_of_time = args.max_minutes and (time.time() - t0) / 60 > args.max_minutes
-        if step % args.epoch_steps == 0 or step == args.steps or args.one_batch:
+        out_of_time = (args.max_minutes and (time.time() - t0) / 60 > args.max_minutes) or \
+            (args.stop_after and step - start >= args.stop_after)
+        if step % args.epoch_steps == 0 or step == args.steps:
             s, text = evaluate(model, args)
             print(f'eval at step {step}:\n{text}', flush=True)
             with open(os.path.join(run_dir, 'eval.jsonl'), 'a') as f:
@@ -256,29 +260,32 @@ def train(args):
                 best = s['score']
                 save_checkpoint(best_path, model, opt, step, best, args, {'eval': s})
                 print(f'new best {best:.4f} -> {best_path}', flush=True)
-        if step % args.ckpt_every == 0 or step == args.steps or out_of_time or args.one_batch:
+        if step % args.ckpt_every == 0 or step == args.steps or out_of_time:
             save_checkpoint(last, model, opt, step, best, args)
-        if out_of_time or args.one_batch:
+        if out_of_time:
             break
     print(f'stopped at step {step} after {(time.time() - t0) / 60:.1f} min ({step - start} steps)', flush=True)
     return model, step
 
 
 def one_batch(argv):
-    """Tiny run in a temp dir: one step, checkpoint, then a resume that must reload the same weights."""
+    """Tiny runs in a temp dir: 2 steps straight vs 1 step + checkpoint + resume for 1 step; the weights
+    must match exactly (exact resume), and an evaluation must run."""
     tmp = tempfile.mkdtemp(prefix='dlslam_one_batch_')
     try:
-        base = ['--runs-dir', tmp, '--run', 'smoke', '--crop', '65', '81', '--batch', '2', '--steps', '2',
+        base = ['--runs-dir', tmp, '--crop', '65', '81', '--batch', '2', '--steps', '2', '--epoch-steps', '2',
                 '--max-val', '2', '--workers', '0', '--one-batch', '--input', '129', '161'] + argv
-        model, step = train(parse_args(base))
+        straight, step = train(parse_args(base + ['--run', 'straight']))
+        assert step == 2, step
+        _, step = train(parse_args(base + ['--run', 'resumed', '--stop-after', '1']))
         assert step == 1, step
-        ck = torch.load(os.path.join(tmp, 'smoke', 'last.pt'), map_location='cpu')
-        for k, v in model.state_dict().items():
-            assert torch.equal(v, ck['model'][k]), k
-        model2, step2 = train(parse_args(base))   # resumes at step 1, runs step 2
-        assert step2 == 2, step2
-        assert all(torch.isfinite(p).all() for p in model2.parameters())
-        print('one-batch smoke test OK')
+        resumed, step = train(parse_args(base + ['--run', 'resumed']))
+        assert step == 2, step
+        for k, v in straight.state_dict().items():
+            assert torch.equal(v, resumed.state_dict()[k]), f'resume is not exact: {k}'
+        assert all(torch.isfinite(p).all() for p in resumed.parameters())
+        assert os.path.exists(os.path.join(tmp, 'resumed', 'best.pt'))
+        print('one-batch smoke test OK (2 steps straight == 1 step + resume + 1 step)')
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
