@@ -59,6 +59,8 @@ def parse_args(argv=None):
     ap.add_argument('--max-minutes', type=float, default=0, help='stop cleanly (checkpoint) after this long')
     ap.add_argument('--resume-from', help='a committed full training state (training/checkpoints/*_state.pt): '
                     'copied to runs/<run>/last.pt when that does not exist, then resumed exactly')
+    ap.add_argument('--init-weights', help='start a new run from the model weights of this checkpoint '
+                    '(e.g. a second, unfrozen fine-tuning phase); overrides --init')
     ap.add_argument('--stop-after', type=int, default=0, help='stop after this many steps in this invocation')
     ap.add_argument('--one-batch', action='store_true', help='smoke test: one tiny step + resume check')
     return ap.parse_args(argv)
@@ -216,8 +218,13 @@ def train(args):
         random.setstate(ck['py_rng'])
         print(f'resumed {last} at step {step} (best score {best:.4f})', flush=True)
     else:
-        src = init_backbone(model, args)
-        pretrained = src != 'random'
+        if args.init_weights:
+            model.load_state_dict({k: v.float() if v.is_floating_point() else v
+                                   for k, v in torch.load(args.init_weights, map_location='cpu')['model'].items()})
+            src, pretrained = args.init_weights + ' (whole model)', True
+        else:
+            src = init_backbone(model, args)
+            pretrained = src != 'random'
         opt = make_optimizer(model, args, pretrained)
         print(f'new run {run_dir}: {args.preset} aspp={args.aspp} backbone init {src}; '
               f'{count_parameters(model) / 1e6:.3f} M parameters', flush=True)
