@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+"""Model tests: ReLU6 export form, ASPP structure and size, output shapes, OpenCV-loadable ONNX equal to PyTorch.
+
+  /usr/bin/python3 training/tests/test_model.py"""
+import os
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+import torch
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from model import build_model, export_friendly  # noqa: E402
+from model.aspp import FactorizedAtrousBranch, ImprovedASPP, OriginalASPP  # noqa: E402
+from model.layers import ReLU6, count_parameters  # noqa: E402
+
+
+class ReLU6Test(unittest.TestCase):
+    def test_export_form_equals_nn_relu6(self):
+        x = torch.linspace(-20, 20, 100001)
+        ref = torch.nn.ReLU6()(x)
+        with export_friendly():
+            self.assertTrue(torch.equal(ReLU6()(x), ref))
+        self.assertTrue(torch.equal(ReLU6()(x), ref))
+
+
+class ASPPTest(unittest.TestCase):
+    def test_improved_has_six_maps_with_paper_rates(self):
+        head = ImprovedASPP(320, 256)
+        rates = [b.dw_3x1.dilation[0] for b in head.branches if isinstance(b, FactorizedAtrousBranch)]
+        self.assertEqual(rates, [4, 8, 12, 16])
+        self.assertEqual(head.project[0].in_channels, 6 * 256)
+        b = head.branches[1]
+        self.assertEqual(b.dw_3x1.kernel_size, (3, 1))
+        self.assertEqual(b.dw_1x3.kernel_size, (1, 3))
+        self.assertEqual(b.dw_1x3.dilation, (1, 4))
+        self.assertEqual(b.dw_3x1.groups, 320)
+
+    def test_improved_is_much_smaller_than_original(self):
+        # independent count of the original head: 1x1 + 3 full 3x3 + pooling conv + projection of 5 maps
+        c_in, c = 320, 256
+        original = (c_in * c + 2 * c) + 3 * (9 * c_in * c + 2 * c) + (c_in * c + c) + (5 * c * c + 2 * c)
+        self.assertEqual(count_parameters(OriginalASPP(c_in, c)), original)
+        self.assertLess(count_parameters(ImprovedASPP(c_in, c)), 0.67 * original)
+
+    def test_same_spatial_size(self):
+        x = torch.randn(2, 64, 9, 11)
+        for head in (ImprovedASPP(64, 32), OriginalASPP(64, 32)):
+            self.assertEqual(tuple(head.eval()(x).shape), (2, 32, 9, 11))
+
+
+class ModelTest(unittest.TestCase):
+    def test_output_shape_all_presets(self):
+        for preset in ('mnv2_w05', 'mnv2_w10', 'resnest26_w05'):
+            m = build_model(preset, num_classes=3).eval()
+            with torch.no_grad():
+                self.assertEqual(tuple(m(torch.zeros(1, 3, 65, 97)).shape), (1, 3, 65, 97), preset)
+
+    def test_onnx_in_opencv_equals_pytorch(self):
+        import cv2
+        from export_onnx import export
+        for preset in ('mnv2_w05', 'resnest26_w05'):
+            torch.manual_seed(0)
+            m = build_model(preset, num_classes=3).eval()
+            for bn in (x for x in m.modules() if isinstance(x, torch.nn.BatchNorm2d)):   # non-trivial BN
+                bn.running_mean.uniform_(-0.1, 0.1)
+                bn.running_var.uniform_(0.5, 1.5)
+            x = torch.rand(1, 3, 129, 161) * 2 - 1
+            with torch.no_grad():
+                ref = m(x).numpy()
+            with tempfile.TemporaryDirectory() as tmp:
+                path = os.path.join(tmp, 'm.onnx')
+                export(m, path, 129, 161)
+                net = cv2.dnn.readNetFromONNX(path)
+                net.setInput(x.numpy())
+                out = net.forward()
+            self.assertEqual(out.shape, ref.shape)
+            diff = float(np.abs(out - ref).max())
+            print(f'{preset}: cv2.dnn vs PyTorch max |diff| {diff:.2e} (logit range {np.abs(ref).max():.2f})')
+            self.assertLess(diff, 1e-3)
+
+
+if __name__ == '__main__':
+    unittest.main()
