@@ -15,66 +15,6 @@ SE3d RootPose(double x, double y, double heading) {
   return SE3d(SO3d::Exp(Eigen::Vector3d(0, 0, heading)), Eigen::Vector3d(x, y, 0));
 }
 
-// Walked distance and speed fraction of a walk/stop cycle: ramp up, cruise,
-// ramp down, stand. Integrals of the smooth step in closed form.
-void WalkSchedule(const WalkerParams& p, double t, double& distance, double& fraction) {
-  const double r = p.ramp_s, w = p.walk_s, period = 2 * r + w + p.stop_s;
-  const double per_cycle = p.speed * (r + w);
-  const double shifted = t + p.schedule_offset_s;
-  const double cycles = std::floor(shifted / period);
-  const double tau = shifted - cycles * period;
-  auto ramp_integral = [](double x) { return x * x * x - 0.5 * x * x * x * x; };
-  double d;
-  if (tau < r) {
-    const double x = tau / r;
-    d = p.speed * r * ramp_integral(x);
-    fraction = SmoothStep(x);
-  } else if (tau < r + w) {
-    d = p.speed * (0.5 * r + tau - r);
-    fraction = 1.0;
-  } else if (tau < 2 * r + w) {
-    const double x = (tau - r - w) / r;
-    d = p.speed * (0.5 * r + w + r * (x - ramp_integral(x)));
-    fraction = 1.0 - SmoothStep(x);
-  } else {
-    d = per_cycle;
-    fraction = 0.0;
-  }
-  distance = cycles * per_cycle + d;
-}
-
-// Arc length along an ellipse, tabulated, so walkers move at their real speed
-// (the angle parameter alone would make them 5x faster at the long sides).
-class EllipseArc {
- public:
-  explicit EllipseArc(const Eigen::Vector2d& radii) : radii_(radii) {
-    length_.resize(kSteps + 1);
-    length_[0] = 0;
-    for (int i = 1; i <= kSteps; ++i) length_[i] = length_[i - 1] + (Point(Angle(i)) - Point(Angle(i - 1))).norm();
-  }
-  double perimeter() const { return length_.back(); }
-  // Arc length from angle 0 to `angle` in [0, 2 pi).
-  double LengthAt(double angle) const {
-    const double f = angle / (2 * kPi) * kSteps;
-    const int i = std::clamp(static_cast<int>(f), 0, kSteps - 1);
-    return length_[i] + (f - i) * (length_[i + 1] - length_[i]);
-  }
-  // The angle at arc length s (any real; wraps around).
-  double AngleAt(double s) const {
-    s -= std::floor(s / perimeter()) * perimeter();
-    const auto it = std::upper_bound(length_.begin(), length_.end(), s);
-    const int i = std::clamp(static_cast<int>(it - length_.begin()) - 1, 0, kSteps - 1);
-    return Angle(i) + (s - length_[i]) / (length_[i + 1] - length_[i]) * (Angle(i + 1) - Angle(i));
-  }
-
- private:
-  static constexpr int kSteps = 2048;
-  static double Angle(int i) { return 2 * kPi * i / kSteps; }
-  Eigen::Vector2d Point(double a) const { return {radii_.x() * std::cos(a), radii_.y() * std::sin(a)}; }
-  Eigen::Vector2d radii_;
-  std::vector<double> length_;
-};
-
 std::vector<ActorPart> PersonParts(const PersonLook& look) {
   std::vector<ActorPart> parts;
   for (Mesh& m : BuildPersonMeshes(look)) parts.push_back({std::move(m), kClassPerson});
@@ -103,24 +43,18 @@ Actor MakeWalker(const PersonLook& look, const WalkerParams& params) {
     AddBox(box.mesh, -half, half, {m, m, m, m, m, m});
     actor.parts.push_back(std::move(box));
   }
-  const auto arc = std::make_shared<const EllipseArc>(params.radii);
-  const double start_angle = params.start_angle - std::floor(params.start_angle / (2 * kPi)) * 2 * kPi;
-  const double start_s = arc->LengthAt(start_angle);
-  actor.pose_at = [look, params, arc, start_s](double t) {
-    double distance = 0, g = 0;
-    WalkSchedule(params, t, distance, g);
-    const double angle = arc->AngleAt(start_s + params.direction * distance);
-    const double x = params.centre.x() + params.radii.x() * std::cos(angle);
-    const double y = params.centre.y() + params.radii.y() * std::sin(angle);
-    const double heading = std::atan2(params.direction * params.radii.y() * std::cos(angle),
-                                      -params.direction * params.radii.x() * std::sin(angle));
+  const auto route = std::make_shared<const WalkRoute>(params.route, params.walk);
+  actor.pose_at = [look, params, route](double t) {
+    const WalkState w = route->At(t + params.schedule_offset_s);
+    const double g = w.speed_fraction;
     const double s = look.height / 1.75;
-    const double phase = 2 * kPi * distance / (1.4 * s);  // one gait cycle = two steps
+    const double phase = 2 * kPi * w.distance / (1.4 * s);  // one gait cycle = two steps
     PersonPose pose;
-    pose.world_from_root = RootPose(x, y, heading);
+    pose.world_from_root = RootPose(w.position.x(), w.position.y(), w.heading);
     pose.hip_height = 0.92 - g * 0.012 * (1 - std::cos(2 * phase));
     pose.torso_pitch = 0.05 * g;
-    pose.head_yaw = 0.12 * std::sin(0.35 * t + params.start_angle);
+    // Standing people look around more than walking ones.
+    pose.head_yaw = (0.12 + 0.25 * (1 - g)) * std::sin(0.35 * t + params.look_around_phase);
     pose.head_pitch = 0.08;
     for (int side = 0; side < 2; ++side) {
       const double leg = phase + side * kPi;
@@ -140,7 +74,7 @@ Actor MakeWalker(const PersonLook& look, const WalkerParams& params) {
     std::vector<SE3d> poses = ToVector(PersonPartPoses(look, pose));
     if (params.carry_box) {
       const double bob = pose.hip_height - 0.92;
-      poses.push_back(pose.world_from_root * SE3d(SO3d(), Eigen::Vector3d(0.36 * s, 0, (1.0 + bob) * s)));
+      poses.push_back(pose.world_from_root * SE3d(SO3d(), Eigen::Vector3d(kCarriedBoxAhead * s, 0, (1.0 + bob) * s)));
     }
     return poses;
   };

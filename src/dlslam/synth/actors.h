@@ -1,5 +1,5 @@
 #pragma once
-// Things that move: people walking a loop (some carrying a box), people
+// Things that move: people walking a route (some carrying a box), people
 // sitting and gesturing, a box slid across a desk. Each is a set of rigid
 // parts whose poses are a pure function of the scene time, so any frame can
 // be rendered on its own and the motion between any two times is known.
@@ -13,6 +13,7 @@
 #include "dlslam/geometry/se3.h"
 #include "dlslam/synth/mesh.h"
 #include "dlslam/synth/person.h"
+#include "dlslam/synth/walk_route.h"
 
 namespace dlslam::synth {
 
@@ -34,18 +35,15 @@ struct Actor {
 };
 
 struct WalkerParams {
-  Eigen::Vector2d centre{0.0, 2.65};  // centre of the elliptic loop on the floor [m]
-  Eigen::Vector2d radii{1.5, 0.3};    // [m] along x, y
-  double start_angle = 0.0;           // [rad] on the ellipse at distance 0
-  int direction = 1;                  // +1 counter-clockwise seen from above, -1 clockwise
-  double speed = 1.0;                 // cruising speed [m/s]
-  double walk_s = 8.0;                // cruising time per cycle [s]
-  double stop_s = 2.0;                // standing time per cycle [s]
-  double ramp_s = 0.8;                // speeding up / slowing down [s]
-  double schedule_offset_s = 0.0;     // where in the cycle the walker is at t = 0 [s]
-  bool carry_box = false;             // holds a box (class 2) in front
+  std::vector<Waypoint> route = {{{-1.0, 1.6}, 1.0}, {{1.0, 1.6}, 1.0}};  // closed, on the floor (WalkRoute)
+  WalkRouteOptions walk;            // pace and turning
+  double schedule_offset_s = 0.0;   // route time at scene time 0 [s]
+  double look_around_phase = 0.0;   // of the head's slow turning [rad]
+  bool carry_box = false;           // holds a box (class 2) in front
   int box_material = 0;
 };
+// How far in front of the root a walker holds a carried box [m] at height 1.75 (scaled).
+inline constexpr double kCarriedBoxAhead = 0.36;
 Actor MakeWalker(const PersonLook& look, const WalkerParams& params);
 
 struct SitterParams {

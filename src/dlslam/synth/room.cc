@@ -124,23 +124,28 @@ void BuildRoom(Scene& s, const RoomOptions& options, Rng& rng) {
   auto screen = [&] { return s.AddMaterial(device_tex, rng); };
 
   // The main desk and what stands on it (clear of the sliding box's path, x in [0, 0.55]).
-  const V3 desk_lo = F(room::kDeskMin), desk_hi = F(room::kDeskMax);
+  const V3 shift(0, static_cast<float>(options.desk_shift_y), 0);
+  auto desk_box = [&](const V3& a, const V3& b, int material, int front_material = -1, Face front = kMinusY) {
+    Box(s, a + shift, b + shift, material, front_material, front);
+  };
+  const V3 desk_lo = F(room::kDeskMin) + shift, desk_hi = F(room::kDeskMax) + shift;
   Desk(s, desk_lo, desk_hi, desk_top, metal);
   const float top = desk_hi.z();
-  Box(s, V3(-0.72f, 1.9f, top), V3(-0.62f, 1.98f, 0.9f), metal);
-  Box(s, V3(-0.95f, 1.86f, 0.9f), V3(-0.4f, 1.93f, 1.24f), metal, screen());  // monitor
-  Box(s, V3(-0.85f, 1.45f, top), V3(-0.45f, 1.62f, top + 0.025f), metal, screen(), kPlusZ);  // keyboard
+  desk_box(V3(-0.72f, 1.9f, top), V3(-0.62f, 1.98f, 0.9f), metal);
+  desk_box(V3(-0.95f, 1.86f, 0.9f), V3(-0.4f, 1.93f, 1.24f), metal, screen());  // monitor
+  desk_box(V3(-0.85f, 1.45f, top), V3(-0.45f, 1.62f, top + 0.025f), metal, screen(), kPlusZ);  // keyboard
   float z = top;
   for (int i = UniformInt(rng, 2, 4); i > 0; --i) {  // a pile of books
     const float h = static_cast<float>(Uniform(rng, 0.03, 0.07));
     const float dx = static_cast<float>(Uniform(rng, 0, 0.05));
-    Box(s, V3(0.58f + dx, 1.38f + dx, z), V3(0.88f + dx, 1.6f + dx, z + h), books, s.AddMaterial(card_tex, rng), kPlusZ);
+    desk_box(V3(0.58f + dx, 1.38f + dx, z), V3(0.88f + dx, 1.6f + dx, z + h), books, s.AddMaterial(card_tex, rng),
+             kPlusZ);
     z += h;
   }
-  Box(s, V3(-0.35f, 1.78f, top), V3(-0.08f, 2.05f, top + 0.2f), cardboard[0]);
+  desk_box(V3(-0.35f, 1.78f, top), V3(-0.08f, 2.05f, top + 0.2f), cardboard[0]);
   Mesh mug;
   AddCapsule(mug, 0.045f, 0.045f, 0.08f, 0.01f, screen(), 12, 1);
-  for (auto& p : mug.positions) p += V3(0.3f, 1.95f, top + 0.09f);
+  for (auto& p : mug.positions) p += V3(0.3f, 1.95f, top + 0.09f) + shift;
   s.static_mesh.Append(mug);
 
   // Shelves in the far corners, a cabinet and frames on the left, a side desk and boxes on the right.

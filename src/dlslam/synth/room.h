@@ -26,11 +26,20 @@ inline constexpr double kViewpointPitchDown = 0.21;  // [rad] (12 deg, as TUM fr
 inline const Eigen::Vector2d kSeatLeft(-0.45, 2.45);
 inline const Eigen::Vector2d kSeatRight(0.45, 2.45);
 inline constexpr double kSeatHeight = 0.47;
+// Walking presets: the desk and what stands on it are this much further back
+// (desk front at y = 2.55 m), leaving the people a floor in front of it, as in
+// TUM fr3 where they walk between the camera and the desk.
+inline constexpr double kWalkingDeskShift = 1.25;  // [m] along +y
+// The floor the walkers' routes (their roots) keep to in the walking presets:
+// 1.2-2.05 m ahead of the start, clear of the desk and the furniture at the sides.
+inline const Eigen::Vector2d kWalkZoneMin(-1.75, 1.2);
+inline const Eigen::Vector2d kWalkZoneMax(1.75, 2.05);
 }  // namespace room
 
 struct RoomOptions {
   bool ceiling = true;         // close the room at the top
   bool chairs_at_desk = true;  // two chairs behind the desk (else beside the side desk)
+  double desk_shift_y = 0.0;   // [m] moves the main desk and its things away from the start (+y)
 };
 
 // Adds the room's meshes, textures, materials and obstacles to `scene`.

@@ -1,10 +1,12 @@
 #include "dlslam/synth/scene.h"
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
 #include "dlslam/synth/random.h"
 #include "dlslam/synth/room.h"
+#include "dlslam/synth/walker_routes.h"
 
 namespace dlslam::synth {
 
@@ -40,20 +42,10 @@ PersonLook RandomLook(Scene& s, std::mt19937& rng) {
 }
 
 void AddWalkers(Scene& s, std::mt19937& rng) {
-  // Both walk the same loop behind the desk at the same pace, half a loop
-  // apart, so they never run into each other; the second carries a box.
-  WalkerParams p;
-  p.speed = Uniform(rng, 0.85, 1.15);
-  p.walk_s = Uniform(rng, 6.0, 10.0);
-  p.stop_s = Uniform(rng, 1.0, 3.0);
-  p.schedule_offset_s = Uniform(rng, 0.0, 10.0);
-  p.start_angle = Uniform(rng, 0.0, 2 * std::numbers::pi);
-  p.direction = Uniform01(rng) < 0.5 ? 1 : -1;
-  s.actors.push_back(MakeWalker(RandomLook(s, rng), p));
-  p.start_angle += std::numbers::pi;
-  p.carry_box = true;
-  p.box_material = s.AddMaterial(s.AddTexture(TextureStyle::kCardboard, 256, 256, 300, rng), rng);
-  s.actors.push_back(MakeWalker(RandomLook(s, rng), p));
+  // Routes first: their draws do not depend on how many the looks take.
+  std::array<WalkerParams, 2> walkers = MakeWalkerPair(rng);
+  walkers[1].box_material = s.AddMaterial(s.AddTexture(TextureStyle::kCardboard, 256, 256, 300, rng), rng);
+  for (const WalkerParams& p : walkers) s.actors.push_back(MakeWalker(RandomLook(s, rng), p));
 }
 
 void AddSitters(Scene& s, std::mt19937& rng) {
@@ -98,7 +90,9 @@ Scene BuildScene(Preset preset, std::uint32_t seed, const SceneOptions& options)
   std::mt19937 rng = MakeRng(seed, kSceneStream);
   RoomOptions room_options;
   room_options.ceiling = options.ceiling;
-  room_options.chairs_at_desk = preset == Preset::kStatic || preset == Preset::kSittingStatic;
+  const bool walking = preset != Preset::kStatic && preset != Preset::kSittingStatic;
+  room_options.chairs_at_desk = !walking;
+  room_options.desk_shift_y = walking ? room::kWalkingDeskShift : 0.0;
   BuildRoom(s, room_options, rng);
   const double p = room::kViewpointPitchDown;
   Eigen::Matrix3d R;  // columns: camera x (right), y (down), z (forward) in the world

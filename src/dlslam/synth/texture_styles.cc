@@ -215,34 +215,57 @@ void Books(cv::Mat& img, Rng& rng, double ppm) {
   AddGrain(img, rng, 4);
 }
 
+// Bands of irregular width across the whole image (rows, or columns when
+// `vertical`), blended over what is there: stripes, and crossed, plaid.
+void Bands(cv::Mat& img, Rng& rng, double ppm, bool vertical, double opacity) {
+  const int extent = vertical ? img.cols : img.rows;
+  for (int p = UniformInt(rng, 0, 8); p < extent; p += static_cast<int>(LogUniform(rng, 0.008, 0.06) * ppm) + 2) {
+    const int w = std::min(extent - p, static_cast<int>(LogUniform(rng, 0.004, 0.04) * ppm) + 1);
+    cv::Mat roi = vertical ? img.colRange(p, p + w) : img.rowRange(p, p + w);
+    cv::addWeighted(roi, 1.0 - opacity, cv::Mat(roi.size(), roi.type(), RandomColour(rng)), opacity, 0.0, roi);
+  }
+}
+
+// Real clothing is busy at many scales (prints, checks, seams, logos): ORB
+// finds as many corners on people as on the room, as in TUM's sequences.
 void Clothing(cv::Mat& img, Rng& rng, double ppm) {
   img.setTo(RandomColour(rng, 10, 245));
-  const int pattern = UniformInt(rng, 0, 2);
-  if (pattern == 0) {  // stripes of irregular width and colour
-    for (int y = 0; y < img.rows; y += static_cast<int>(LogUniform(rng, 0.01, 0.08) * ppm) + 2) {
-      cv::rectangle(img, cv::Rect(0, y, img.cols, static_cast<int>(LogUniform(rng, 0.005, 0.05) * ppm) + 1),
-                    RandomColour(rng), cv::FILLED);
-    }
-  } else if (pattern == 1) {  // camouflage-like blotches
-    AddBlotches(img, rng, 45, 12, false);
+  const double area = img.cols * img.rows / (ppm * ppm);
+  switch (UniformInt(rng, 0, 3)) {
+    case 0: Bands(img, rng, ppm, false, 1.0); break;  // stripes
+    case 1:  // plaid: crossing translucent bands
+      Bands(img, rng, ppm, false, 0.55);
+      Bands(img, rng, ppm, true, 0.55);
+      break;
+    case 2: AddBlotches(img, rng, 60, 10, false); break;  // camouflage-like
+    default: Scatter(img, rng, static_cast<int>(300 * area), 0.01 * ppm, 0.06 * ppm, 0, 255); break;  // all-over print
   }
-  Scatter(img, rng, 30, 3, 0.15 * ppm, 0, 255);  // prints, logos, buttons
-  for (int i = 0; i < 3; ++i) DrawPoster(img, rng, cv::Rect(UniformInt(rng, 0, img.cols * 3 / 4), UniformInt(rng, 0, img.rows * 3 / 4), img.cols / 6, img.rows / 6));
+  Scatter(img, rng, static_cast<int>(150 * area), 0.006 * ppm, 0.12 * ppm, 0, 255);  // prints, logos, buttons
+  for (int i = UniformInt(rng, 2, 5); i > 0; --i) {  // printed graphics
+    const int w = static_cast<int>(LogUniform(rng, 0.08, 0.25) * ppm), h = static_cast<int>(w * Uniform(rng, 0.5, 1.3));
+    DrawPoster(img, rng, cv::Rect(UniformInt(rng, 0, img.cols - w), UniformInt(rng, 0, img.rows - h), w, h));
+  }
+  for (int i = UniformInt(rng, 2, 6); i > 0; --i) {  // lettering
+    DrawText(img, rng, {UniformInt(rng, 0, img.cols * 3 / 4), UniformInt(rng, 10, img.rows)},
+             LogUniform(rng, 0.015, 0.06) * ppm, RandomColour(rng));
+  }
   AddGrain(img, rng, 7);
 }
 
 void Trousers(cv::Mat& img, Rng& rng, double ppm) {
   static const cv::Scalar kCloth[] = {{120, 70, 40}, {30, 30, 30}, {110, 160, 180}, {70, 70, 75}, {60, 90, 60}};
   img.setTo(Jitter(rng, kCloth[UniformInt(rng, 0, 4)], 15));
-  AddBlotches(img, rng, 12, 10);
-  for (int i = 0; i < 6; ++i) {  // seams and pockets
+  AddBlotches(img, rng, 20, 10);
+  if (Uniform01(rng) < 0.4) Bands(img, rng, ppm, UniformInt(rng, 0, 1) == 1, 0.5);  // checks or pinstripes
+  for (int i = 0; i < 8; ++i) {  // seams, pockets, patches
     const int x = UniformInt(rng, 0, img.cols);
     cv::line(img, {x, 0}, {x + UniformInt(rng, -20, 20), img.rows}, RandomColour(rng, 100, 220), 2, cv::LINE_AA);
-    const int s = static_cast<int>(0.1 * ppm);
-    cv::rectangle(img, cv::Rect(UniformInt(rng, 0, img.cols - s), UniformInt(rng, 0, img.rows - s), s, s),
-                  RandomColour(rng, 0, 255), 2, cv::LINE_AA);
+    const int s = static_cast<int>(LogUniform(rng, 0.05, 0.15) * ppm);
+    const cv::Rect r(UniformInt(rng, 0, img.cols - s), UniformInt(rng, 0, img.rows - s), s, s);
+    if (Uniform01(rng) < 0.4) cv::rectangle(img, r, RandomColour(rng, 0, 255), cv::FILLED);
+    cv::rectangle(img, r, RandomColour(rng, 0, 255), 2, cv::LINE_AA);
   }
-  Scatter(img, rng, 12, 3, 0.05 * ppm, 0, 255);
+  Scatter(img, rng, static_cast<int>(60 * img.cols * img.rows / (ppm * ppm)), 0.006 * ppm, 0.06 * ppm, 0, 255);
   AddGrain(img, rng, 12);
 }
 
