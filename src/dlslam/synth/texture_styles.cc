@@ -3,6 +3,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -215,39 +216,61 @@ void Books(cv::Mat& img, Rng& rng, double ppm) {
   AddGrain(img, rng, 4);
 }
 
+// A garment's colours: a dark, a light and a vivid one, so that its patterns
+// keep their contrast in grey, which is all ORB sees.
+using Palette = std::array<cv::Scalar, 3>;
+Palette GarmentPalette(Rng& rng) {
+  cv::Scalar vivid = RandomColour(rng, 0, 255);
+  vivid[UniformInt(rng, 0, 2)] = UniformInt(rng, 200, 255);
+  return {RandomColour(rng, 0, 70), RandomColour(rng, 175, 255), vivid};
+}
+
+cv::Scalar Pick(const Palette& palette, Rng& rng) {
+  return Jitter(rng, palette[static_cast<std::size_t>(UniformInt(rng, 0, 2))], 25);
+}
+
 // Bands of irregular width across the whole image (rows, or columns when
 // `vertical`), blended over what is there: stripes, and crossed, plaid.
-void Bands(cv::Mat& img, Rng& rng, double ppm, bool vertical, double opacity) {
+void Bands(cv::Mat& img, Rng& rng, double ppm, bool vertical, double opacity, const Palette& palette) {
   const int extent = vertical ? img.cols : img.rows;
   for (int p = UniformInt(rng, 0, 8); p < extent; p += static_cast<int>(LogUniform(rng, 0.008, 0.06) * ppm) + 2) {
     const int w = std::min(extent - p, static_cast<int>(LogUniform(rng, 0.004, 0.04) * ppm) + 1);
     cv::Mat roi = vertical ? img.colRange(p, p + w) : img.rowRange(p, p + w);
-    cv::addWeighted(roi, 1.0 - opacity, cv::Mat(roi.size(), roi.type(), RandomColour(rng)), opacity, 0.0, roi);
+    cv::addWeighted(roi, 1.0 - opacity, cv::Mat(roi.size(), roi.type(), Pick(palette, rng)), opacity, 0.0, roi);
+  }
+}
+
+void ScatterPalette(cv::Mat& img, Rng& rng, int count, double min_size, double max_size, const Palette& palette) {
+  for (int i = 0; i < count; ++i) {
+    DrawShape(img, rng, {Uniform(rng, 0, img.cols), Uniform(rng, 0, img.rows)}, LogUniform(rng, min_size, max_size),
+              Pick(palette, rng));
   }
 }
 
 // Real clothing is busy at many scales (prints, checks, seams, logos): ORB
-// finds as many corners on people as on the room, as in TUM's sequences.
+// finds corners on people as densely as on the room, as in TUM's sequences.
 void Clothing(cv::Mat& img, Rng& rng, double ppm) {
-  img.setTo(RandomColour(rng, 10, 245));
+  const Palette palette = GarmentPalette(rng);
+  img.setTo(Pick(palette, rng));
   const double area = img.cols * img.rows / (ppm * ppm);
   switch (UniformInt(rng, 0, 3)) {
-    case 0: Bands(img, rng, ppm, false, 1.0); break;  // stripes
+    case 0: Bands(img, rng, ppm, false, 1.0, palette); break;  // stripes
     case 1:  // plaid: crossing translucent bands
-      Bands(img, rng, ppm, false, 0.55);
-      Bands(img, rng, ppm, true, 0.55);
+      Bands(img, rng, ppm, false, 0.6, palette);
+      Bands(img, rng, ppm, true, 0.6, palette);
       break;
-    case 2: AddBlotches(img, rng, 60, 10, false); break;  // camouflage-like
-    default: Scatter(img, rng, static_cast<int>(300 * area), 0.01 * ppm, 0.06 * ppm, 0, 255); break;  // all-over print
+    case 2: AddBlotches(img, rng, 70, 10, false); break;  // camouflage-like
+    default: ScatterPalette(img, rng, static_cast<int>(300 * area), 0.01 * ppm, 0.06 * ppm, palette); break;
   }
-  Scatter(img, rng, static_cast<int>(150 * area), 0.006 * ppm, 0.12 * ppm, 0, 255);  // prints, logos, buttons
+  ScatterPalette(img, rng, static_cast<int>(120 * area), 0.006 * ppm, 0.12 * ppm, palette);  // prints, buttons
+  Scatter(img, rng, static_cast<int>(40 * area), 0.006 * ppm, 0.05 * ppm, 0, 255);  // stains, badges
   for (int i = UniformInt(rng, 2, 5); i > 0; --i) {  // printed graphics
     const int w = static_cast<int>(LogUniform(rng, 0.08, 0.25) * ppm), h = static_cast<int>(w * Uniform(rng, 0.5, 1.3));
     DrawPoster(img, rng, cv::Rect(UniformInt(rng, 0, img.cols - w), UniformInt(rng, 0, img.rows - h), w, h));
   }
   for (int i = UniformInt(rng, 2, 6); i > 0; --i) {  // lettering
     DrawText(img, rng, {UniformInt(rng, 0, img.cols * 3 / 4), UniformInt(rng, 10, img.rows)},
-             LogUniform(rng, 0.015, 0.06) * ppm, RandomColour(rng));
+             LogUniform(rng, 0.015, 0.06) * ppm, Pick(palette, rng));
   }
   AddGrain(img, rng, 7);
 }
@@ -256,7 +279,7 @@ void Trousers(cv::Mat& img, Rng& rng, double ppm) {
   static const cv::Scalar kCloth[] = {{120, 70, 40}, {30, 30, 30}, {110, 160, 180}, {70, 70, 75}, {60, 90, 60}};
   img.setTo(Jitter(rng, kCloth[UniformInt(rng, 0, 4)], 15));
   AddBlotches(img, rng, 20, 10);
-  if (Uniform01(rng) < 0.4) Bands(img, rng, ppm, UniformInt(rng, 0, 1) == 1, 0.5);  // checks or pinstripes
+  if (Uniform01(rng) < 0.4) Bands(img, rng, ppm, UniformInt(rng, 0, 1) == 1, 0.5, GarmentPalette(rng));  // pinstripes
   for (int i = 0; i < 8; ++i) {  // seams, pockets, patches
     const int x = UniformInt(rng, 0, img.cols);
     cv::line(img, {x, 0}, {x + UniformInt(rng, -20, 20), img.rows}, RandomColour(rng, 100, 220), 2, cv::LINE_AA);
