@@ -20,4 +20,8 @@ supp="$PWD/scripts/sanitizers"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$supp/tsan.supp"
-ctest --test-dir "$dir" --output-on-failure --parallel "$(nproc)" "$@"
+# A per-test limit, so that a deadlock fails the run instead of hanging it.
+# The slowest tests under TSan (SlamPipelineTest: every test process renders
+# the 60-frame fixture, then runs SLAM once or twice) take ~55 s on 2 idle
+# cores and up to ~280 s on 2 cores shared with other builds.
+ctest --test-dir "$dir" --output-on-failure --parallel "$(nproc)" --timeout 600 "$@"
