@@ -35,6 +35,11 @@ AntColonySearch::AntColonySearch(const AntColonyOptions& options)
   options_.Check();
 }
 
+void AntColonySearch::set_max_tests(int max_tests) {
+  DLSLAM_CHECK_GE(max_tests, 0, "AntColonySearch::set_max_tests (0 = no limit)");
+  options_.max_tests = max_tests;
+}
+
 void AntColonySearch::ResetGrid(cv::Size image) {
   image_ = image;
   const int size = options_.cell_size_px;

@@ -43,6 +43,9 @@ class AntColonySearch final : public PointSearch {
   // Path points m_i of the last call (point indices, in walking order).
   const std::vector<int>& last_path_points() const { return path_points_; }
   const AntColonyOptions& options() const { return options_; }
+  // Changes the per-frame test budget (AntColonyOptions::max_tests, >= 0),
+  // e.g. to follow the time left; the pheromone is kept.
+  void set_max_tests(int max_tests);
 
  private:
   enum class State : std::uint8_t { kOpen, kSkipped, kTested };
