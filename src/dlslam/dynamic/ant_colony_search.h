@@ -70,6 +70,13 @@ class AntColonySearch final : public PointSearch {
   std::vector<int> cell_start_;   // counting sort: cell c holds cell_points_[start[c], start[c+1])
   std::vector<int> cell_points_;
   std::vector<int> point_cell_;
+  // A finer grid for the radius queries (cells ~ dh wide, so a query scans
+  // about 3x3 small cells instead of the path's large ones).
+  int near_size_ = 16;
+  int near_cols_ = 0;
+  int near_rows_ = 0;
+  std::vector<int> near_start_;
+  std::vector<int> near_points_;
   std::vector<State> state_;
   std::vector<int> path_;
   std::vector<int> path_points_;
