@@ -53,9 +53,13 @@ class AntColonySearch final : public PointSearch {
   void ResetGrid(cv::Size image);
   void BucketPoints(const std::vector<ProjectedPoint>& points);
   void BuildPath();
-  // Calls visit(j) for every point j within `radius` of `centre`.
+  // Calls visit(j) for every point j within `radius` of `centre`, in fine
+  // cells whose `per_cell` count is non-zero (cells with nothing left to do
+  // are not scanned).
   template <typename Visit>
-  void ForEachNear(const Eigen::Vector2f& centre, float radius, Visit&& visit) const;
+  void ForEachNear(const Eigen::Vector2f& centre, float radius, const std::vector<int>& per_cell,
+                   Visit&& visit) const;
+  void SetState(int point, State state);
   void UpdatePheromone(const std::vector<PointLabel>& labels);
   int CellOf(const Eigen::Vector2f& pixel) const;
 
@@ -77,6 +81,9 @@ class AntColonySearch final : public PointSearch {
   int near_rows_ = 0;
   std::vector<int> near_start_;
   std::vector<int> near_points_;
+  std::vector<int> point_near_cell_;
+  std::vector<int> near_untested_;  // per fine cell: points not tested yet
+  std::vector<int> near_open_;      // per fine cell: points neither tested nor skipped
   std::vector<State> state_;
   std::vector<int> path_;
   std::vector<int> path_points_;
