@@ -5,7 +5,7 @@
 //   build/bin/dynamic_eval --presets walking_xyz,walking_static --frames 60
 //   build/bin/dynamic_eval --presets walking_xyz --pictures out/   # + overlay PNGs
 //   build/bin/dynamic_eval --real-pair "../shared/data/real-samples/jointvosf_dynamic_frame_pairs/two people walking" --pictures out/
-//   build/bin/dynamic_eval --tum-pair ../shared/data/real-samples/tum_walking_xyz_3frames
+//   build/bin/dynamic_eval --tum-pair ../shared/data/real-samples/tum_walking_xyz_3frames --swap
 //       --groundtruth ../shared/data/tum/gt/rgbd_dataset_freiburg3_walking_xyz.txt
 //
 // Synthetic: per preset and strategy, keypoints (reference points) projected
@@ -214,6 +214,8 @@ int main(int argc, char** argv) try {
   app.add_option("--real-pair", real_pair, "folder with color0/1.png, depth0/1.png (no poses)");
   app.add_option("--tum-pair", tum_pair, "folder with rgb/ and depth/ (first two frames used)");
   app.add_option("--groundtruth", groundtruth, "TUM groundtruth for --tum-pair");
+  bool swap = false;
+  app.add_flag("--swap", swap, "pairs: frame 1 is the reference, frame 0 the current one");
   app.add_option("--radius", geometry.ant.search_radius_px, "ant colony R [px]");
   app.add_option("--band", geometry.ant.band_width_px, "ant colony dh [px]");
   app.add_option("--depth-threshold", geometry.multiview.depth_threshold_m, "th(0) [m]");
@@ -257,6 +259,11 @@ int main(int argc, char** argv) try {
         pair.world_from_cam0 = pose_at(rgb[0]);
         pair.world_from_cam1 = pose_at(rgb[1]);
       }
+    }
+    if (swap) {  // e.g. the TUM sample, whose second frame has the people removed
+      std::swap(colour0, pair.colour1);
+      std::swap(pair.depth0, pair.depth1);
+      std::swap(pair.world_from_cam0, pair.world_from_cam1);
     }
     pair.f0 = orb.Extract(colour0);
     if (groundtruth.empty()) {
