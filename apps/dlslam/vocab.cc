@@ -43,6 +43,7 @@ struct TrainArgs {
   int max_features = features::OrbOptions().n_features;
   int max_images = 0;
   int max_side = 640;
+  bool skip_unreadable = false;
 };
 
 // `count` paths spread evenly over `files` (all when count is 0 or larger).
@@ -61,6 +62,7 @@ place::TrainingDescriptors ExtractAll(const std::vector<std::filesystem::path>& 
   orb_options.n_features = args.max_features;
   orb_options.Check();
   std::vector<std::vector<Descriptor>> per_image(images.size());
+  std::vector<char> skipped(images.size(), 0);
   std::atomic<std::size_t> next{0}, done{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
@@ -75,6 +77,15 @@ place::TrainingDescriptors ExtractAll(const std::vector<std::filesystem::path>& 
           cv::resize(image, image, cv::Size(), scale, scale, cv::INTER_AREA);
         }
         per_image[i] = place::DescriptorsFromMat(extractor.Extract(image).descriptors);
+      } catch (const InputError& e) {
+        if (args.skip_unreadable) {
+          skipped[i] = 1;
+          spdlog::warn("skipped: {}", e.what());
+        } else {
+          std::lock_guard lock(failure_mutex);
+          if (!failure) failure = std::current_exception();
+          next = images.size();
+        }
       } catch (...) {
         std::lock_guard lock(failure_mutex);
         if (!failure) failure = std::current_exception();
@@ -90,7 +101,15 @@ place::TrainingDescriptors ExtractAll(const std::vector<std::filesystem::path>& 
   for (auto& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
   place::TrainingDescriptors training;
-  for (const auto& descriptors : per_image) training.AddImage(descriptors);
+  std::size_t skipped_count = 0;
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    if (skipped[i]) {
+      ++skipped_count;
+    } else {
+      training.AddImage(per_image[i]);
+    }
+  }
+  if (skipped_count > 0) spdlog::warn("{} of {} files skipped (not readable as 8-bit colour)", skipped_count, images.size());
   return training;
 }
 
@@ -177,6 +196,8 @@ void AddVocabCommand(CLI::App& app) {
   train->add_option("--max-side", train_args->max_side,
                     "Shrink larger images to this longer side first [px] (0 = keep)")
       ->capture_default_str();
+  train->add_flag("--skip-unreadable", train_args->skip_unreadable,
+                  "Skip files that are not 8-bit colour images (e.g. 16-bit depth) with a warning, instead of failing");
   train->add_option("--iterations", train_args->options.max_iterations, "k-means iterations per node, at most")
       ->capture_default_str();
   train->add_option("--seed", train_args->options.seed, "Seed (same seed and images: same file)")

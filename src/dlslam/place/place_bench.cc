@@ -7,6 +7,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
+#include <algorithm>
 #include <filesystem>
 #include <random>
 
@@ -120,17 +121,18 @@ void BM_RedkitchenRevisits(benchmark::State& state) {
     state.SkipWithError("shared data 7scenes-redkitchen-500 not found");
     return;
   }
-  RevisitEvaluation result, loose;
+  RevisitEvaluation result, strict;
   for (auto _ : state) {
     const auto frames = testing::LoadRevisitFrames(dir, 1, TheVocabulary());
     result = EvaluateRevisits(frames);
-    loose = EvaluateRevisits(frames, {100, 0.5, 30.0});
+    strict = EvaluateRevisits(frames, {100, 0.3, 20.0, 0.3, 20.0});
   }
   state.counters["queries"] = result.queries;
   state.counters["precision_at_1"] = result.precision_at_1;
   state.counters["chance"] = result.chance;
-  state.counters["loose_queries"] = loose.queries;
-  state.counters["loose_precision_at_1"] = loose.precision_at_1;
+  state.counters["correct"] = result.correct;
+  state.counters["strict_precision_at_1"] = strict.precision_at_1;
+  state.counters["strict_chance"] = strict.chance;
 }
 BENCHMARK(BM_RedkitchenRevisits)->Unit(benchmark::kSecond)->Iterations(1);
 

@@ -24,17 +24,18 @@ BowVector BowOf(const cv::Mat& image) {
 
 TEST(Recognition, RedkitchenRevisitsAreFoundFarAboveChance) {
   DLSLAM_REQUIRE_SHARED_DATA(dir, "7scenes-redkitchen-500");
-  // Every 2nd frame keeps the test near a second; the camera comes back to
+  // Every 3rd frame keeps the test near a second; the camera comes back to
   // frames 315-343 at 486-499, the only revisits more than 100 frames apart.
-  const auto frames = testing::LoadRevisitFrames(dir, 2, ShippedVocabulary());
+  const auto frames = testing::LoadRevisitFrames(dir, 3, ShippedVocabulary());
   const RevisitEvaluation result = EvaluateRevisits(frames);
-  ASSERT_GE(result.queries, 15);
-  // A random pick is right about 1 in 20 times; the bar is set well above it
-  // (the vocabulary was trained on these frames among ~2000 other images,
-  // so this is a sanity check, not a generalisation measure: see
+  ASSERT_GE(result.queries, 10);
+  // A random pick is right about 1 in 10 times; the bar is set well above
+  // it (the vocabulary was trained on these frames among ~2300 images, so
+  // this is a sanity check, not a generalisation measure: see
   // docs/place-recognition.md for a vocabulary trained without them).
-  EXPECT_LT(result.chance, 0.15);
-  EXPECT_GE(result.precision_at_1, 0.7) << result.correct << " of " << result.queries;
+  EXPECT_LT(result.chance, 0.2);
+  EXPECT_GE(result.precision_at_1, 0.6) << result.correct << " of " << result.queries;
+  EXPECT_GT(result.precision_at_1, 4.0 * result.chance);
 }
 
 TEST(Recognition, SamePlaceScoresHigherThanAnotherRoom) {
