@@ -1,5 +1,7 @@
 #include "dlslam/io/file_util.h"
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <system_error>
 
@@ -40,6 +42,54 @@ void WriteFileAtomically(const std::filesystem::path& path,
     std::filesystem::remove(tmp, ec);
     throw InputError(path, 0, "cannot replace file: {}", ec.message());
   }
+}
+
+std::string ReadFileBytes(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) throw InputError(path, 0, "file not found");
+  if (!std::filesystem::is_regular_file(status)) throw InputError(path, 0, "not a regular file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot open for reading");
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0) throw InputError(path, 0, "cannot determine the file size");
+  in.seekg(0, std::ios::beg);
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  in.read(bytes.data(), size);
+  if (in.gcount() != size) {
+    throw InputError(path, 0, "read {} of {} bytes", in.gcount(), size);
+  }
+  return bytes;
+}
+
+namespace {
+
+std::string Lower(std::string_view text) {
+  std::string lower(text);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return lower;
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> FindFilesRecursively(const std::filesystem::path& root,
+                                                        const std::vector<std::string_view>& extensions) {
+  if (!std::filesystem::is_directory(root)) throw InputError(root, 0, "not a folder");
+  std::vector<std::string> wanted;
+  for (std::string_view extension : extensions) wanted.push_back(Lower(extension));
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(root, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    if (!it->is_regular_file()) continue;
+    const std::string extension = Lower(it->path().extension().string());
+    if (std::find(wanted.begin(), wanted.end(), extension) != wanted.end()) files.push_back(it->path());
+  }
+  if (ec) throw InputError(root, 0, "cannot list the folder: {}", ec.message());
+  std::sort(files.begin(), files.end());
+  return files;
 }
 
 }  // namespace dlslam::io

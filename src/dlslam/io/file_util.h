@@ -4,6 +4,9 @@
 #include <filesystem>
 #include <functional>
 #include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace dlslam::io {
 
@@ -12,5 +15,16 @@ namespace dlslam::io {
 // error) leaves any existing file untouched and throws InputError.
 void WriteFileAtomically(const std::filesystem::path& path,
                          const std::function<void(std::ostream&)>& write);
+
+// The whole file in one read. Throws InputError (line 0) when it is missing,
+// not a regular file or unreadable.
+std::string ReadFileBytes(const std::filesystem::path& path);
+
+// Regular files under `root` (recursively, following no symlinked folders)
+// whose extension is one of `extensions` (with the dot, compared without
+// case: ".png" matches "a.PNG"), sorted by path so that the order does not
+// depend on the file system. Throws InputError when `root` is not a folder.
+std::vector<std::filesystem::path> FindFilesRecursively(const std::filesystem::path& root,
+                                                        const std::vector<std::string_view>& extensions);
 
 }  // namespace dlslam::io
