@@ -13,5 +13,6 @@ void AddSynthCommand(CLI::App& app);    // synth.cc: synthetic dynamic RGB-D seq
 void AddDatasetCommand(CLI::App& app);  // dataset.cc: fetch TUM / Bonn sequences
 void AddInfoCommand(CLI::App& app);     // info.cc: what a sequence folder holds
 void AddRunCommand(CLI::App& app);      // run.cc: SLAM on a sequence
+void AddSegmentCommand(CLI::App& app);  // segment.cc: dynamic-object masks from the segmentation network
 
 }  // namespace dlslam::app

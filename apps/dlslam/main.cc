@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   dlslam::app::AddSynthCommand(app);
   dlslam::app::AddEvalCommand(app);
   dlslam::app::AddDatasetCommand(app);
+  dlslam::app::AddSegmentCommand(app);
 
   try {
     app.parse(argc, argv);

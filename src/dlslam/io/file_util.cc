@@ -1,6 +1,7 @@
 #include "dlslam/io/file_util.h"
 
 #include <fstream>
+#include <iterator>
 #include <system_error>
 
 #include "dlslam/util/check.h"
@@ -40,6 +41,18 @@ void WriteFileAtomically(const std::filesystem::path& path,
     std::filesystem::remove(tmp, ec);
     throw InputError(path, 0, "cannot replace file: {}", ec.message());
   }
+}
+
+std::vector<unsigned char> ReadFileBytes(const std::filesystem::path& path, const char* what) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path, 0, "{} file not found", what);
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, 0, "{} file is a directory", what);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot open {} file for reading", what);
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(path, 0, "read error in {} file", what);
+  if (bytes.empty()) throw InputError(path, 0, "{} file is empty (0 bytes)", what);
+  return bytes;
 }
 
 }  // namespace dlslam::io
