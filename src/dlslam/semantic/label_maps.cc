@@ -6,6 +6,11 @@
 
 namespace dlslam::semantic {
 
+namespace {
+// Above this margin [px] DilateMask thresholds a distance transform.
+constexpr int kLargeMarginPx = 8;
+}  // namespace
+
 cv::Mat ArgmaxLabels(const cv::Mat& logits) {
   DLSLAM_CHECK_EQ(logits.dims, 4, "logits must be a 1 x C x H x W blob");
   DLSLAM_CHECK_EQ(logits.type(), CV_32F, "logits must be float");
@@ -48,6 +53,13 @@ cv::Mat ClassMask(const cv::Mat& labels, const std::vector<int>& class_ids) {
 cv::Mat DilateMask(const cv::Mat& mask, int margin_px) {
   DLSLAM_CHECK_GE(margin_px, 0, "dilation margin [px]");
   if (margin_px == 0) return mask;
+  if (margin_px > kLargeMarginPx) {
+    // A disc dilation costs O(radius) per pixel; the exact Euclidean distance
+    // to the mask costs O(1), so wide margins (long propagation gaps) threshold it.
+    cv::Mat distance;
+    cv::distanceTransform(mask == 0, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+    return distance <= static_cast<float>(margin_px);
+  }
   const cv::Mat disc =
       cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * margin_px + 1, 2 * margin_px + 1));
   cv::Mat grown;

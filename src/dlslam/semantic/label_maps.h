@@ -19,8 +19,9 @@ cv::Mat ArgmaxLabels(const cv::Mat& logits);
 // 255 where the label is one of `class_ids`, 0 elsewhere (CV_8UC1).
 cv::Mat ClassMask(const cv::Mat& labels, const std::vector<int>& class_ids);
 
-// Grows a 0/255 mask by `margin_px` with an elliptic (disc) structuring
-// element; margin 0 returns the mask unchanged.
+// Grows a 0/255 mask by `margin_px`: every pixel within that distance of the
+// mask (a disc structuring element; above 8 px the exact Euclidean distance,
+// which is faster for wide discs). Margin 0 returns the mask unchanged.
 cv::Mat DilateMask(const cv::Mat& mask, int margin_px);
 
 // The result for a frame of `frame_size` from the network's label map (at the

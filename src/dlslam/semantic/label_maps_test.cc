@@ -67,7 +67,7 @@ TEST(DilateMask, GrowsBySomethingLikeADiscOfTheMargin) {
   cv::Mat dot(41, 41, CV_8UC1, cv::Scalar(0));
   dot.at<uchar>(20, 20) = 255;
   EXPECT_EQ(cv::countNonZero(DilateMask(dot, 0)), 1);
-  for (const int margin : {1, 3, 6}) {
+  for (const int margin : {1, 3, 6, 8, 9, 15}) {  // both sides of the switch to the distance transform
     const cv::Mat grown = DilateMask(dot, margin);
     // Along the axes exactly the margin, no further.
     EXPECT_EQ(grown.at<uchar>(20, 20 + margin), 255) << margin;
