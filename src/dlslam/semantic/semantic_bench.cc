@@ -1,7 +1,8 @@
 // Segment() on a real 640x480 TUM fr3/walking_xyz frame (people in view; from
 // the shared data, else smoothed noise), for the shipped model and the two
 // DeepLabv3 VOC teachers (same preprocessing, 21 classes), with 1 and 2
-// OpenCV threads; and the post-processing alone.
+// OpenCV threads; the post-processing alone; and ORB extraction with the
+// segmentation one after the other or in the worker thread.
 //
 //   nice -n 10 build/bin/dlslam_bench_semantic --benchmark_repetitions=5
 //     --benchmark_report_aggregates_only=true
@@ -17,10 +18,13 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
+#include "dlslam/features/orb_extractor.h"
 #include "dlslam/semantic/label_maps.h"
 #include "dlslam/semantic/onnx_segmenter.h"
+#include "dlslam/semantic/segmentation_worker.h"
 
 namespace dlslam::semantic {
 namespace {
@@ -112,6 +116,38 @@ void BM_Postprocess(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_Postprocess)->Arg(3)->Arg(21)->Unit(benchmark::kMicrosecond);
+
+// One tracking step's front end: ORB extraction (1000 features, grey frame)
+// and segmentation of the same frame. Arg 0: one after the other in the
+// caller; arg 1: segmentation in the SegmentationWorker while the caller
+// extracts ORB, then waits for the mask (the paper's Fig. 1). Arg 2: OpenCV
+// threads.
+void BM_OrbAndSegment(benchmark::State& state) {
+  const bool parallel = state.range(0) == 1;
+  cv::setNumThreads(static_cast<int>(state.range(1)));
+  auto segmenter = std::make_unique<OnnxSegmenter>(OptionsFor(kOurs));
+  std::optional<SegmentationWorker> worker;
+  if (parallel) worker.emplace(std::move(segmenter));
+  features::OrbExtractor orb;
+  cv::Mat grey;
+  cv::cvtColor(BenchFrame(), grey, cv::COLOR_BGR2GRAY);
+  for (auto _ : state) {
+    if (parallel) {
+      auto mask = worker->Submit(BenchFrame());
+      benchmark::DoNotOptimize(orb.Extract(grey));
+      benchmark::DoNotOptimize(mask.get());
+    } else {
+      benchmark::DoNotOptimize(segmenter->Segment(BenchFrame()));
+      benchmark::DoNotOptimize(orb.Extract(grey));
+    }
+  }
+  state.SetLabel(parallel ? "worker thread || ORB" : "segment then ORB");
+}
+BENCHMARK(BM_OrbAndSegment)
+    ->ArgNames({"parallel", "threads"})
+    ->ArgsProduct({{0, 1}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace dlslam::semantic
