@@ -50,7 +50,8 @@ void SegmentationWorker::Stop() {
 SegmentationResult SegmentationWorker::Process(const Job& job) {
   if (job.segment || !last_) {
     // A frame meant for propagation whose segmented predecessor failed is
-    // segmented itself rather than left without a mask.
+    // segmented itself rather than given an older frame's mask.
+    last_.reset();
     SegmentationResult result = segmenter_->Segment(job.bgr);
     last_ = result;
     last_index_ = job.index;

@@ -134,6 +134,23 @@ TEST(SegmentationWorker, LowerRatePropagatesAndGrowsTheMask) {
   EXPECT_EQ(futures[2].get().seconds, 0.0);
 }
 
+TEST(SegmentationWorker, AFailedSegmentationIsNotPropagatedOver) {
+  FakeSegmenter::Shared shared;
+  SegmentationWorkerOptions options;
+  options.segment_every = 2;
+  SegmentationWorker worker(std::make_unique<FakeSegmenter>(&shared), options);
+  auto f0 = worker.Submit(Frame(30));
+  auto f1 = worker.Submit(Frame(31));
+  auto f2 = worker.Submit(cv::Mat(40, 80, CV_8UC1, cv::Scalar(0)));  // to segment, fails
+  auto f3 = worker.Submit(Frame(33));  // would propagate f2: segmented itself instead
+  EXPECT_EQ(f1.get().propagated_from, 1);
+  EXPECT_THROW(f2.get(), Error);
+  EXPECT_EQ(f3.get().propagated_from, 0);
+  EXPECT_EQ(f3.get().dynamic_mask.at<uchar>(15, 33), 255);
+  worker.Stop();
+  EXPECT_THAT(shared.seen, ElementsAre(30, 33));
+}
+
 TEST(SegmentationWorker, PropagationRefusesAFrameOfAnotherSize) {
   FakeSegmenter::Shared shared;
   SegmentationWorkerOptions options;
