@@ -64,7 +64,14 @@ semantic::SegmenterOptions MakeOptions(const SegmentArgs& args) {
 void SegmentImage(const SegmentArgs& args) {
   const cv::Mat bgr = io::ReadColorImage({args.image, {}, 0}, 0, 0);
   const auto segmenter = semantic::MakeSegmenter(MakeOptions(args));
-  const semantic::SegmentationResult r = segmenter->Segment(bgr);
+  semantic::SegmentationResult r;
+  try {
+    r = segmenter->Segment(bgr);
+  } catch (const InputError&) {
+    throw;
+  } catch (const Error& e) {
+    throw InputError(args.image, 0, "{}", e.what());
+  }
   if (!args.out.empty()) io::WriteImage(args.out, r.dynamic_mask);
   if (!args.overlay.empty()) io::WriteImage(args.overlay, Overlay(bgr, r));
   fmt::print("{} ({}x{}): {:.1f} ms; dynamic {:.2f} % of pixels (margin {} px), movable {:.2f} %; model {}\n",
@@ -111,7 +118,15 @@ void SegmentSequence(const SegmentArgs& args) {
   datasets::ProgressBar progress("segment", !args.quiet, "frames");
   const auto finish_one = [&] {
     Pending& p = pending.front();
-    const semantic::SegmentationResult& r = p.result.get();
+    semantic::SegmentationResult r;
+    try {
+      r = p.result.get();
+    } catch (const InputError&) {
+      throw;
+    } catch (const Error& e) {
+      throw InputError(p.listed->list_file, p.listed->line, "colour image '{}': {}",
+                       (folder / p.listed->path).string(), e.what());
+    }
     const fs::path name = p.listed->path.filename().replace_extension(".png");
     io::WriteImage(out / name, r.dynamic_mask);
     if (!overlay_dir.empty()) io::WriteImage(overlay_dir / name, Overlay(p.bgr, r));

@@ -1,5 +1,7 @@
 #include "dlslam/semantic/onnx_segmenter.h"
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <opencv2/core/utility.hpp>
 #include <string>
@@ -76,11 +78,16 @@ cv::Mat OnnxSegmenter::Forward(const cv::Mat& blob) {
 }
 
 void OnnxSegmenter::CheckFrame(const cv::Mat& bgr) const {
-  DLSLAM_CHECK(!bgr.empty(), "empty image given to the segmenter");
-  DLSLAM_CHECK(bgr.type() == CV_8UC3, "segmenter needs an 8-bit BGR image (CV_8UC3), got type {} ({} channels, {}-bit)",
-               bgr.type(), bgr.channels(), bgr.elemSize1() * 8);
-  DLSLAM_CHECK(bgr.dims == 2 && bgr.cols >= options_.min_image_side && bgr.rows >= options_.min_image_side,
-               "image of {}x{} px is smaller than {} px on a side", bgr.cols, bgr.rows, options_.min_image_side);
+  // Plain errors, not check failures: a wrong frame is the caller's input.
+  if (bgr.empty()) throw Error("empty image given to the segmenter");
+  if (bgr.type() != CV_8UC3) {
+    throw Error(fmt::format("the segmenter needs an 8-bit BGR image (CV_8UC3), got {} channel(s) of {}-bit",
+                            bgr.channels(), bgr.elemSize1() * 8));
+  }
+  if (bgr.dims != 2 || bgr.cols < options_.min_image_side || bgr.rows < options_.min_image_side) {
+    throw Error(fmt::format("image of {}x{} px is smaller than {} px on a side", bgr.cols, bgr.rows,
+                            options_.min_image_side));
+  }
 }
 
 cv::Mat OnnxSegmenter::NetworkLabels(const cv::Mat& bgr) {

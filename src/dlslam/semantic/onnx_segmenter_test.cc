@@ -100,9 +100,9 @@ TEST(OnnxSegmenter, RefusesBadFrames) {
     }
   };
   expect_error(cv::Mat(), "empty image");
-  expect_error(cv::Mat(48, 64, CV_8UC1, cv::Scalar(0)), "CV_8UC3");
-  expect_error(cv::Mat(48, 64, CV_8UC4, cv::Scalar(0)), "CV_8UC3");
-  expect_error(cv::Mat(48, 64, CV_16UC3, cv::Scalar(0)), "16-bit");
+  expect_error(cv::Mat(48, 64, CV_8UC1, cv::Scalar(0)), "CV_8UC3), got 1 channel(s) of 8-bit");
+  expect_error(cv::Mat(48, 64, CV_8UC4, cv::Scalar(0)), "got 4 channel(s)");
+  expect_error(cv::Mat(48, 64, CV_16UC3, cv::Scalar(0)), "of 16-bit");
   expect_error(cv::Mat(48, 64, CV_32FC3, cv::Scalar(0)), "CV_8UC3");
   expect_error(cv::Mat(8, 64, CV_8UC3, cv::Scalar(0)), "smaller than 16 px");
 }

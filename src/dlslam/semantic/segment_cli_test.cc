@@ -140,7 +140,7 @@ TEST_F(SegmentCliTest, BadImages) {
   const fs::path deep = WriteFrame("deep.png", cv::Mat(120, 160, CV_16UC1, cv::Scalar(1000)));
   ExpectError("--image " + Quoted(deep) + " " + IdentityModel(), "16-bit");
   const fs::path tiny = WriteFrame("tiny.png", cv::Mat(4, 4, CV_8UC3, cv::Scalar(0)));
-  ExpectError("--image " + Quoted(tiny) + " " + IdentityModel(), "smaller than 16 px");
+  ExpectError("--image " + Quoted(tiny) + " " + IdentityModel(), "tiny.png: image of 4x4 px is smaller than 16 px");
 }
 
 TEST_F(SegmentCliTest, BadModels) {
@@ -161,6 +161,9 @@ TEST_F(SegmentCliTest, BadSequences) {
   ExpectError("--sequence " + Quoted(seq) + " " + IdentityModel(), "--out");
   ExpectError("--sequence " + Quoted(seq) + " --out " + Quoted(seq / "rgb") + " " + IdentityModel(),
               "folder of the colour frames");
+  cv::imwrite((seq / "rgb" / "101.500000.png").string(), cv::Mat(8, 8, CV_8UC3, cv::Scalar(0)));
+  ExpectError("--sequence " + Quoted(seq) + " --out " + Quoted(dir_ / "m") + " " + IdentityModel(),
+              "rgb.txt:4: colour image '" + (seq / "rgb" / "101.500000.png").string() + "': image of 8x8 px");
   fs::remove(seq / "rgb" / "101.500000.png");
   ExpectError("--sequence " + Quoted(seq) + " --out " + Quoted(dir_ / "m") + " " + IdentityModel(),
               "rgb.txt:4: colour image");
