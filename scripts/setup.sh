@@ -12,6 +12,8 @@ PACKAGES=(
   libspdlog-dev libfmt-dev nlohmann-json3-dev libtbb-dev
   libcurl4-openssl-dev libarchive-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # training/ (segmentation network; CI runs its one-batch and model tests with /usr/bin/python3)
+  python3-torch python3-opencv python3-onnx python3-numpy
 )
 
 missing=()

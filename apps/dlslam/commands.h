@@ -14,5 +14,6 @@ void AddDatasetCommand(CLI::App& app);  // dataset.cc: fetch TUM / Bonn sequence
 void AddInfoCommand(CLI::App& app);     // info.cc: what a sequence folder holds
 void AddRunCommand(CLI::App& app);      // run.cc: SLAM on a sequence
 void AddVocabCommand(CLI::App& app);    // vocab.cc: bag-of-words vocabularies (train, info)
+void AddSegmentCommand(CLI::App& app);  // segment.cc: dynamic-object masks from the segmentation network
 
 }  // namespace dlslam::app

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   dlslam::app::AddEvalCommand(app);
   dlslam::app::AddDatasetCommand(app);
   dlslam::app::AddVocabCommand(app);
+  dlslam::app::AddSegmentCommand(app);
 
   try {
     app.parse(argc, argv);

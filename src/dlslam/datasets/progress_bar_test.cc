@@ -24,6 +24,15 @@ TEST(ProgressBar, FormatsFractionSizesAndSpeed) {
   EXPECT_THAT(ProgressBar::Format(200, 100, 0), HasSubstr("100.0%"));
 }
 
+TEST(ProgressBar, CountsItemsInTheirUnit) {
+  const std::string bar = ProgressBar::Format(400, 800, 14.2, "frames");
+  EXPECT_THAT(bar, HasSubstr(" 50.0%"));
+  EXPECT_THAT(bar, HasSubstr("400 / 800 frames"));
+  EXPECT_THAT(bar, HasSubstr("14.2 frames/s"));
+  EXPECT_THAT(bar, ::testing::Not(HasSubstr("MiB")));
+  EXPECT_THAT(ProgressBar::Format(7, 0, 0, "frames"), HasSubstr("7 frames"));
+}
+
 TEST(ProgressBar, DrawsNothingWhenDisabled) {
   ::testing::internal::CaptureStderr();
   {

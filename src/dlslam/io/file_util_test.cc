@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
 
 #include "dlslam/io/model_file.h"
@@ -80,7 +81,23 @@ TEST(FindModelFile, FallsBackToTheSourceTreesModelsFolder) {
   EXPECT_EQ(candidates[0].parent_path().filename(), "models");
   EXPECT_EQ(candidates[0].parent_path().parent_path().filename(), "dlslam");
   EXPECT_THAT(ErrorOf([] { FindModelFile("no_such_model.bin"); }),
-              ::testing::AllOf(HasSubstr("no_such_model.bin"), HasSubstr("share/dlslam/models")));
+              ::testing::AllOf(HasSubstr("no_such_model.bin"), HasSubstr("share/dlslam/models"),
+                               HasSubstr("DLSLAM_MODEL_DIR")));
+}
+
+TEST(FindModelFile, ModelDirFromTheEnvironmentComesFirst) {
+  const auto dir = dlslam::testing::MakeTempDir("model_dir_env");
+  WriteBytes(dir / "README.md", "mine");
+  ASSERT_EQ(setenv("DLSLAM_MODEL_DIR", dir.c_str(), 1), 0);
+  const auto found = FindModelFile("README.md");
+  const auto candidates = ModelFileCandidates("x.bin");
+  unsetenv("DLSLAM_MODEL_DIR");
+  EXPECT_EQ(found, dir / "README.md");
+  ASSERT_EQ(candidates.size(), 3u);
+  EXPECT_EQ(candidates[0], dir / "x.bin");
+  // A folder given as the model is refused by name.
+  EXPECT_THAT(ErrorOf([&] { FindModelFile("README.md", dir); }), HasSubstr("not a regular file"));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -100,4 +100,14 @@ cv::Size ReadImageSize(const ImageSource& source) {
   return Decode(source, "colour", cv::IMREAD_UNCHANGED).size();
 }
 
+void WriteImage(const std::filesystem::path& path, const cv::Mat& image) {
+  bool ok = false;
+  try {
+    ok = cv::imwrite(path.string(), image);
+  } catch (const cv::Exception& e) {
+    throw InputError(path, 0, "cannot write image: {}", e.what());
+  }
+  if (!ok) throw InputError(path, 0, "cannot write image");
+}
+
 }  // namespace dlslam::io

@@ -32,4 +32,8 @@ cv::Mat ReadDepthImage(const ImageSource& source, double depth_factor, int width
 // The size of an image file (decodes it). Same file errors as above.
 cv::Size ReadImageSize(const ImageSource& source);
 
+// Writes an image; the format follows the extension (PNG for masks and depth).
+// Throws InputError naming the file when OpenCV cannot write it.
+void WriteImage(const std::filesystem::path& path, const cv::Mat& image);
+
 }  // namespace dlslam::io

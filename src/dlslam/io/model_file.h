@@ -2,9 +2,10 @@
 // Where the files we ship in models/ (networks, vocabularies) are found at run
 // time, in this order:
 //   1. an explicit path given by the user (it must exist);
-//   2. <folder of the running executable>/../share/dlslam/models/<name>
+//   2. $DLSLAM_MODEL_DIR/<name>, when the variable is set;
+//   3. <folder of the running executable>/../share/dlslam/models/<name>
 //      (the installed layout: bin/dlslam next to share/dlslam/models);
-//   3. <source tree>/models/<name> (compile definition), for builds run in
+//   4. <source tree>/models/<name> (compile definition), for builds run in
 //      place (build/bin/dlslam).
 
 #include <filesystem>
@@ -17,7 +18,7 @@ namespace dlslam::io {
 // in none of the default places (the message lists them).
 std::filesystem::path FindModelFile(std::string_view name, const std::filesystem::path& explicit_path = {});
 
-// The default places for `name`, in search order (2 and 3 above).
+// The default places for `name`, in search order (2 to 4 above).
 std::vector<std::filesystem::path> ModelFileCandidates(std::string_view name);
 
 }  // namespace dlslam::io

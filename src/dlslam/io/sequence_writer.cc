@@ -1,12 +1,12 @@
 #include "dlslam/io/sequence_writer.h"
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
 
 #include <cmath>
 #include <regex>
 
 #include "dlslam/io/file_util.h"
+#include "dlslam/io/image_io.h"
 #include "dlslam/io/settings.h"
 #include "dlslam/io/trajectory_io.h"
 #include "dlslam/util/check.h"
@@ -35,16 +35,6 @@ void RemoveEarlierRun(const fs::path& dir) {
     }
   }
   for (const char* name : kListFiles) fs::remove(dir / name);
-}
-
-void WriteImage(const fs::path& path, const cv::Mat& image) {
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path.string(), image);
-  } catch (const cv::Exception& e) {
-    throw InputError(path, 0, "cannot write image: {}", e.what());
-  }
-  if (!ok) throw InputError(path, 0, "cannot write image");
 }
 
 void WriteList(const fs::path& path, const std::string& title, const std::string& description,

@@ -1,0 +1,89 @@
+#pragma once
+// The semantic thread: segments frames in its own thread, in the order they
+// are submitted, so that the tracker can extract ORB features meanwhile and
+// wait only for what is left (the paper's Fig. 1):
+//
+//   SegmentationWorker worker(MakeSegmenter(options));
+//   auto mask = worker.Submit(frame.color);       // returns at once (blocks only when the queue is full)
+//   ... extract ORB features ...
+//   const SegmentationResult& r = mask.get();     // waits for the segmentation if still running
+//
+// At a lower rate (segment_every = k), only every k-th submitted frame is
+// segmented; the frames in between get the last segmented frame's masks with
+// the dynamic mask dilated by propagation_grow_px per frame of distance.
+
+#include <atomic>
+#include <cstddef>
+#include <future>
+#include <memory>
+#include <mutex>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <thread>
+
+#include "dlslam/semantic/segmenter.h"
+#include "dlslam/util/bounded_queue.h"
+
+namespace dlslam::semantic {
+
+struct SegmentationWorkerOptions {
+  // Frames waiting to be segmented [frames]; Submit blocks while it is full.
+  std::size_t queue_capacity = 2;
+  // Segment every k-th submitted frame (1 = all) [frames].
+  int segment_every = 1;
+  // Extra dilation of a propagated dynamic mask per frame since the segmented
+  // one [px / frame], for the motion in between (4: keeps the recall of
+  // segmenting every frame at k = 2, 3 on DAVIS parkour, docs/semantic.md).
+  int propagation_grow_px = 4;
+
+  // Throws dlslam::Error naming the bad value.
+  void Check() const;
+};
+
+class SegmentationWorker {
+ public:
+  // Starts the thread. Throws dlslam::Error for bad options or a null segmenter.
+  explicit SegmentationWorker(std::unique_ptr<Segmenter> segmenter, const SegmentationWorkerOptions& options = {});
+  ~SegmentationWorker();  // Stop()
+  SegmentationWorker(const SegmentationWorker&) = delete;
+  SegmentationWorker& operator=(const SegmentationWorker&) = delete;
+
+  // Queues a CV_8UC3 frame (the worker keeps a reference: do not write into
+  // it afterwards). The future holds the result, or the frame's error
+  // (dlslam::Error from the segmenter, a size change in propagation, or
+  // "stopped" when Stop() came first). Throws dlslam::Error after Stop().
+  // Call from one thread (the tracker): the frame order is the call order.
+  std::shared_future<SegmentationResult> Submit(cv::Mat bgr);
+
+  // Finishes the frame being segmented, fails the queued ones (their futures
+  // throw "stopped") and joins the thread. Idempotent.
+  void Stop();
+
+  // True once Stop() has begun.
+  bool stopped() const { return stopping_.load(); }
+  const SegmentationWorkerOptions& options() const { return options_; }
+
+ private:
+  struct Job {
+    cv::Mat bgr;
+    std::promise<SegmentationResult> promise;
+    long index = 0;        // submission number
+    bool segment = true;   // false: propagate the last segmented frame's masks
+  };
+
+  void Run();
+  SegmentationResult Process(const Job& job);
+
+  std::unique_ptr<Segmenter> segmenter_;
+  SegmentationWorkerOptions options_;
+  BoundedQueue<Job> queue_;
+  std::atomic<bool> stopping_{false};
+  std::mutex stop_mutex_;
+  long submitted_ = 0;  // Submit's thread only
+  // Worker thread only: the last successfully segmented frame and its number.
+  std::optional<SegmentationResult> last_;
+  long last_index_ = -1;
+  std::thread thread_;
+};
+
+}  // namespace dlslam::semantic
