@@ -71,8 +71,9 @@ class Map {
   // Tracking statistics used to cull unreliable points.
   void RecordVisibility(const std::vector<MapPointId>& visible, const std::vector<MapPointId>& found);
 
-  // Number of points of `keyframe` observed by at least min_observations
-  // keyframes (0 for a culled keyframe).
+  // Number of points of `keyframe` with at least min_observations
+  // observations, one with depth counting twice (a virtual stereo pair, as
+  // ORB-SLAM counts them); 0 for a culled keyframe.
   int TrackedPoints(KeyFrameId keyframe, int min_observations) const;
   std::vector<KeyFramePose> KeyFramePoses() const;  // sorted by id
   std::optional<KeyFrameSnapshot> GetKeyFrame(KeyFrameId keyframe) const;
