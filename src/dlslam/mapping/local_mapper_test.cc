@@ -78,17 +78,20 @@ TEST(LocalMapper, ThreadedRunTracksAsWell) {
 
 TEST(LocalMapper, TriangulatesWhereDepthEnds) {
   // A 4.5 m sensor range: the far wall (5 m) has no depth; its points come
-  // from triangulation, and with them tracking stays as accurate.
+  // from triangulation. Fewer points with depth make every pose ~1 cm worse
+  // than in the full-depth runs (already over the first frames, before any
+  // triangulation), so the bound is looser here.
   const RunResult r = RunSequence(false, true, 90, 4.5, {}, 200);
   EXPECT_GT(r.stats.points_triangulated, 200);
   EXPECT_GT(r.stats.points_fused, 0);
-  EXPECT_LT(r.max_error, 0.01);
+  EXPECT_LT(r.max_error, 0.025);
   LocalMapperOptions without;
   without.triangulation = false;
   without.fusion = false;
   const RunResult plain = RunSequence(false, true, 90, 4.5, without, 200);
   EXPECT_EQ(plain.stats.points_triangulated, 0);
   EXPECT_EQ(plain.stats.points_fused, 0);
+  EXPECT_LT(r.max_error, plain.max_error + 0.005);  // the new points do not hurt
 }
 
 TEST(LocalMapper, BothBundleSolversTrackAlike) {
