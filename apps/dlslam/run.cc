@@ -20,6 +20,7 @@ RunOutcome RunSequence(const RunArgs& args) {
   const CameraIntrinsics& camera = sequence.camera();
   SystemOptions options;
   options.sequential = args.sequential;
+  options.mapping.bundle.solver = ParseBundleSolver(args.bundle_solver);
   SlamSystem slam(camera, options);
   const std::size_t n = args.max_frames ? std::min(args.max_frames, sequence.size()) : sequence.size();
   TrackingState last_state = TrackingState::kNotInitialized;
@@ -82,6 +83,10 @@ void AddRunCommand(CLI::App& app) {
       ->check(CLI::IsMember({"orb"}));
   cmd->add_flag("--sequential", args->sequential,
                 "Run local mapping inline: deterministic, reproducible bit for bit");
+  cmd->add_option("--bundle-solver", args->bundle_solver,
+                  "Local bundle adjustment: lm (our sparse Levenberg-Marquardt) or ceres")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"lm", "ceres"}));
   cmd->add_option("--max-frames", args->max_frames, "Stop after this many frames (0 = all)");
   cmd->add_option("--camera", args->sequence_options.camera_preset, "Camera preset: fr1, fr2, fr3, bonn");
   cmd->add_option("--settings", args->sequence_options.settings_file, "ORB-SLAM3-style settings YAML");

@@ -17,6 +17,8 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
   j["map_points"] = stats.map_points;
   j["local_mapping"] = {{"keyframes_processed", stats.mapping.keyframes_processed},
                         {"points_culled", stats.mapping.points_culled},
+                        {"points_triangulated", stats.mapping.points_triangulated},
+                        {"points_fused", stats.mapping.points_fused},
                         {"keyframes_culled", stats.mapping.keyframes_culled},
                         {"bundle_outliers", stats.mapping.bundle_outliers}};
   nlohmann::ordered_json timing;

@@ -17,6 +17,7 @@ struct RunArgs {
   std::filesystem::path report;
   std::string mode = "orb";
   bool sequential = false;
+  std::string bundle_solver = "lm";  // local bundle adjustment: "lm" or "ceres"
   std::size_t max_frames = 0;
   io::RgbdSequenceOptions sequence_options;
 };

@@ -62,7 +62,7 @@ std::shared_ptr<Frame> LandmarkScene::MakeFrame(const SE3d& cam_from_world, doub
     std::copy(d.begin(), d.end(), desc.ptr<uint8_t>(static_cast<int>(k)));
   }
   if (landmark_of) *landmark_of = visible;
-  return std::make_shared<Frame>(Frame::Create(timestamp, keypoints, desc, depth, camera, pyramid));
+  return std::make_shared<Frame>(Frame::Create(timestamp, keypoints, desc, depth, camera, pyramid, 0.1, max_depth));
 }
 
 }  // namespace dlslam::testing

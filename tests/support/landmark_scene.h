@@ -17,6 +17,8 @@ struct LandmarkScene {
   std::vector<std::array<uint8_t, 32>> descriptors;
   CameraIntrinsics camera = CameraPreset("freiburg3");
   ScalePyramid pyramid;
+  // Keypoints farther than this [m] get no depth (a sensor's range).
+  double max_depth = 20.0;
 
   // Landmarks on the walls of a box room [-3,3] x [-2,2] x [-1,5] (camera near the origin looks along +z).
   static LandmarkScene Room(int n, unsigned seed);

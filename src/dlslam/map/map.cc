@@ -194,7 +194,12 @@ int Map::TrackedPoints(KeyFrameId keyframe, int min_observations) const {
   if (it == keyframes_.end()) return 0;
   int n = 0;
   for (MapPointId pid : it->second.points) {
-    if (pid != kNoId && static_cast<int>(points_.at(pid).observations.size()) >= min_observations) ++n;
+    if (pid == kNoId) continue;
+    int observations = 0;
+    for (const auto& [kf_id, idx] : points_.at(pid).observations) {
+      observations += keyframes_.at(kf_id).frame->keypoint(idx).right_u >= 0 ? 2 : 1;
+    }
+    n += observations >= min_observations;
   }
   return n;
 }

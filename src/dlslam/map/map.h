@@ -71,8 +71,9 @@ class Map {
   // Tracking statistics used to cull unreliable points.
   void RecordVisibility(const std::vector<MapPointId>& visible, const std::vector<MapPointId>& found);
 
-  // Number of points of `keyframe` observed by at least min_observations
-  // keyframes (0 for a culled keyframe).
+  // Number of points of `keyframe` with at least min_observations
+  // observations, one with depth counting twice (a virtual stereo pair, as
+  // ORB-SLAM counts them); 0 for a culled keyframe.
   int TrackedPoints(KeyFrameId keyframe, int min_observations) const;
   std::vector<KeyFramePose> KeyFramePoses() const;  // sorted by id
   std::optional<KeyFrameSnapshot> GetKeyFrame(KeyFrameId keyframe) const;
@@ -98,12 +99,30 @@ class Map {
   std::vector<KeyFrameId> CullRedundantKeyFrames(KeyFrameId current, double close_depth, double redundancy = 0.9,
                                                  int min_views = 3);
 
+  // --- New points and fusion by local mapping (map_fusion.cc) ---
+  // The n covisible neighbours of `keyframe` sharing most points, best first
+  // (ties: newer first), leaving out keyframes with an id above max_id.
+  std::vector<KeyFrameId> BestCovisible(KeyFrameId keyframe, std::size_t n, KeyFrameId max_id = kNoId) const;
+  // A point triangulated from keypoint1 of keyframe1 and keypoint2 of
+  // keyframe2, observed by both (keyframe1 is its reference). No-op returning
+  // kNoId when either keyframe is gone or either keypoint already has a point.
+  MapPointId AddTriangulatedPoint(const Eigen::Vector3d& position, KeyFrameId keyframe1, int keypoint1,
+                                  KeyFrameId keyframe2, int keypoint2);
+  // Point `point` projects onto keypoint `keypoint` of `keyframe`: adds the
+  // observation, or, when the keypoint already holds another point, merges
+  // the two into the one observed by more keyframes. Returns false when
+  // nothing changed (point or keyframe gone, or the keyframe already sees it).
+  bool FusePoint(MapPointId point, KeyFrameId keyframe, int keypoint);
+
  private:
   void RefreshPoint(MapPoint& point) const;  // descriptor, normal, distances
   // These expect the lock to be held.
   void EraseObservationLocked(MapPointId point, KeyFrameId keyframe);
   void ErasePointLocked(MapPointId point);
   void EraseKeyFrameLocked(KeyFrameId keyframe);
+  // Moves the observations of `from` to `into` (dropping those of keyframes
+  // that already see `into`) and erases `from`.
+  void ReplacePointLocked(MapPointId from, MapPointId into);
 
   // Culled keyframes: parent and the transform from it, so that frames
   // tracked against them keep a pose.

@@ -27,8 +27,11 @@ TEST(Map, PointsObservationsAndCovisibility) {
   const KeyFrameId k0 = map.AddKeyFrame(f0, Pose(0, 0));
   const KeyFrameId k1 = map.AddKeyFrame(f1, Pose(-0.1, 0.02));
   std::map<int, MapPointId> point_of_landmark;
+  std::map<int, int> weight_of_landmark;  // observations, one with depth counting twice
+  const auto weight = [](const Frame& f, std::size_t i) { return f.keypoint(i).right_u >= 0 ? 2 : 1; };
   for (std::size_t i = 0; i < lm0.size(); ++i) {
     point_of_landmark[lm0[i]] = map.AddMapPoint(scene.points[lm0[i]], k0, static_cast<int>(i));
+    weight_of_landmark[lm0[i]] = weight(*f0, i);
   }
   int shared = 0;
   for (std::size_t i = 0; i < lm1.size(); ++i) {
@@ -36,13 +39,25 @@ TEST(Map, PointsObservationsAndCovisibility) {
     if (it == point_of_landmark.end()) continue;
     EXPECT_TRUE(map.AddObservation(it->second, k1, static_cast<int>(i)));
     EXPECT_FALSE(map.AddObservation(it->second, k1, static_cast<int>(i)));  // twice: refused
+    weight_of_landmark[lm1[i]] += weight(*f1, i);
     ++shared;
+  }
+  int weight3 = 0, weight2 = 0;
+  for (const auto& [lm, w] : weight_of_landmark) {
+    weight3 += w >= 3;
+    weight2 += w >= 2;
   }
   ASSERT_GT(shared, 100);
   map.UpdateConnections(k1);
   EXPECT_EQ(map.NumKeyFrames(), 2u);
   EXPECT_EQ(map.NumMapPoints(), lm0.size());
-  EXPECT_EQ(map.TrackedPoints(k0, 2), shared);
+  // Observations with depth count twice (nearly every keypoint has depth:
+  // shared points have 4, the others 2).
+  EXPECT_EQ(map.TrackedPoints(k0, 3), weight3);
+  EXPECT_EQ(map.TrackedPoints(k0, 2), weight2);
+  EXPECT_GT(weight3, 0.95 * shared);
+  EXPECT_LE(weight3, shared);
+  EXPECT_GT(weight2, 0.95 * static_cast<double>(lm0.size()));
   EXPECT_EQ(map.TrackedPoints(k1, 1), shared);
 
   // The local map of points seen in k1 holds both keyframes, k1 first.

@@ -12,6 +12,8 @@ void LocalMapperOptions::Check() const {
   DLSLAM_CHECK(min_found_ratio >= 0 && min_found_ratio <= 1);
   DLSLAM_CHECK(keyframe_redundancy > 0 && keyframe_redundancy <= 1);
   DLSLAM_CHECK_GT(close_depth, 0.0);
+  triangulate.Check();
+  fuse.Check();
   bundle.Check();
 }
 
@@ -63,6 +65,16 @@ void LocalMapper::Process(KeyFrameId keyframe) {
   Stopwatch total;
   LocalMappingStats step;
   step.points_culled = map_->CullRecentPoints(keyframe, options_.min_point_observations, options_.min_found_ratio);
+  if (options_.triangulation) {
+    Stopwatch watch;
+    step.points_triangulated = CreateNewMapPoints(map_, keyframe, options_.triangulate);
+    if (timings_) timings_->Add("triangulation", watch.ElapsedMs());
+  }
+  if (options_.fusion) {
+    Stopwatch watch;
+    step.points_fused = FuseWithNeighbours(map_, keyframe, options_.fuse).fused;
+    if (timings_) timings_->Add("fusion", watch.ElapsedMs());
+  }
   if (options_.bundle_adjustment) {
     Stopwatch ba;
     LocalBundle bundle = map_->BuildLocalBundle(keyframe);
@@ -78,6 +90,8 @@ void LocalMapper::Process(KeyFrameId keyframe) {
   std::lock_guard lock(stats_mutex_);
   ++stats_.keyframes_processed;
   stats_.points_culled += step.points_culled;
+  stats_.points_triangulated += step.points_triangulated;
+  stats_.points_fused += step.points_fused;
   stats_.keyframes_culled += step.keyframes_culled;
   stats_.bundle_outliers += step.bundle_outliers;
 }

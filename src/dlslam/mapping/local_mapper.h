@@ -1,14 +1,17 @@
 #pragma once
 // Local mapping: refines the map around each new keyframe, in its own thread
 // (or inline, for the deterministic sequential mode). Per keyframe: cull the
-// recent points tracking rarely finds, local bundle adjustment, cull
-// redundant keyframes. Keyframes arrive through a bounded queue; the thread
+// recent points tracking rarely finds, triangulate new points with the
+// neighbours, fuse duplicated points across them, local bundle adjustment,
+// cull redundant keyframes. Keyframes arrive through a bounded queue; the thread
 // owns no map state of its own.
 
 #include <atomic>
 #include <thread>
 
 #include "dlslam/map/map.h"
+#include "dlslam/mapping/fusion.h"
+#include "dlslam/mapping/triangulation.h"
 #include "dlslam/optimize/bundle_adjuster.h"
 #include "dlslam/util/bounded_queue.h"
 #include "dlslam/util/timing.h"
@@ -28,6 +31,12 @@ struct LocalMapperOptions {
   double keyframe_redundancy = 0.9;
   // Keypoints closer than this [m] have reliable depth (see TrackerOptions).
   double close_depth = 3.0;
+  // New points by triangulation with the neighbouring keyframes.
+  bool triangulation = true;
+  TriangulationOptions triangulate;
+  // Fusion of duplicated points across neighbouring keyframes.
+  bool fusion = true;
+  FusionOptions fuse;
   bool bundle_adjustment = true;
   BundleAdjusterOptions bundle;
 
@@ -37,6 +46,8 @@ struct LocalMapperOptions {
 struct LocalMappingStats {
   int keyframes_processed = 0;
   int points_culled = 0;
+  int points_triangulated = 0;
+  int points_fused = 0;  // observations added or points merged by fusion
   int keyframes_culled = 0;
   int bundle_outliers = 0;
 };

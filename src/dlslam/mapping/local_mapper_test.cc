@@ -27,11 +27,14 @@ struct RunResult {
   std::size_t keyframes = 0;
 };
 
-RunResult RunSequence(bool threaded, bool bundle_adjustment, int frames) {
-  const auto scene = testing::LandmarkScene::Room(6000, 8);
+RunResult RunSequence(bool threaded, bool bundle_adjustment, int frames, double max_depth = 20.0,
+                      LocalMapperOptions options = {}, int min_init_points = 500) {
+  auto scene = testing::LandmarkScene::Room(6000, 8);
+  scene.max_depth = max_depth;
   Map map;
-  Tracker tracker(TrackerOptions(), &map);
-  LocalMapperOptions options;
+  TrackerOptions tracker_options;
+  tracker_options.min_init_points = min_init_points;
+  Tracker tracker(tracker_options, &map);
   options.bundle_adjustment = bundle_adjustment;
   LocalMapper mapper(options, &map);
   if (threaded) mapper.Start();
@@ -71,6 +74,35 @@ TEST(LocalMapper, ThreadedRunTracksAsWell) {
   const RunResult r = RunSequence(true, true, 200);
   EXPECT_LT(r.max_error, 0.01);
   EXPECT_GT(r.stats.keyframes_processed, 3);
+}
+
+TEST(LocalMapper, TriangulatesWhereDepthEnds) {
+  // A 4.5 m sensor range: the far wall (5 m) has no depth; its points come
+  // from triangulation. Fewer points with depth make every pose ~1 cm worse
+  // than in the full-depth runs (already over the first frames, before any
+  // triangulation), so the bound is looser here.
+  const RunResult r = RunSequence(false, true, 90, 4.5, {}, 200);
+  EXPECT_GT(r.stats.points_triangulated, 200);
+  EXPECT_GT(r.stats.points_fused, 0);
+  EXPECT_LT(r.max_error, 0.025);
+  LocalMapperOptions without;
+  without.triangulation = false;
+  without.fusion = false;
+  const RunResult plain = RunSequence(false, true, 90, 4.5, without, 200);
+  EXPECT_EQ(plain.stats.points_triangulated, 0);
+  EXPECT_EQ(plain.stats.points_fused, 0);
+  EXPECT_LT(r.max_error, plain.max_error + 0.005);  // the new points do not hurt
+}
+
+TEST(LocalMapper, BothBundleSolversTrackAlike) {
+  LocalMapperOptions ceres;
+  ceres.bundle.solver = BundleSolver::kCeres;
+  const RunResult with_ceres = RunSequence(false, true, 60, 20.0, ceres);
+  LocalMapperOptions lm;
+  lm.bundle.solver = BundleSolver::kLm;
+  const RunResult with_lm = RunSequence(false, true, 60, 20.0, lm);
+  EXPECT_LT(with_ceres.max_error, 0.01);
+  EXPECT_LT(with_lm.max_error, 0.01);
 }
 
 TEST(LocalMapperOptions, Check) {

@@ -1,9 +1,9 @@
 #include "dlslam/match/projection_matcher.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 
+#include "dlslam/match/rotation_histogram.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam {
@@ -18,33 +18,6 @@ void ProjectionMatchOptions::Check() const {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kRotationBins = 30;
-
-int RotationBin(float angle_a, float angle_b) {
-  float d = angle_a - angle_b;
-  if (d < 0) d += 360.f;
-  return std::min(kRotationBins - 1, static_cast<int>(d * kRotationBins / 360.f));
-}
-
-// Keeps the matches that fall into the three fullest rotation bins (a bin is
-// kept if it has at least 10 % of the fullest one's count).
-void KeepDominantRotations(const std::vector<std::pair<int, int>>& binned, std::vector<MapPointId>* matches,
-                           int* matched) {
-  std::array<int, kRotationBins> count{};
-  for (const auto& [idx, bin] : binned) ++count[bin];
-  std::array<int, kRotationBins> order{};
-  for (int i = 0; i < kRotationBins; ++i) order[i] = i;
-  std::partial_sort(order.begin(), order.begin() + 3, order.end(),
-                    [&](int a, int b) { return count[a] > count[b]; });
-  std::array<bool, kRotationBins> keep{};
-  for (int k = 0; k < 3; ++k) keep[order[k]] = count[order[k]] > 0 && count[order[k]] * 10 >= count[order[0]];
-  for (const auto& [idx, bin] : binned) {
-    if (!keep[bin]) {
-      (*matches)[idx] = kNoId;
-      --*matched;
-    }
-  }
-}
 
 }  // namespace
 
@@ -133,14 +106,17 @@ std::vector<MapPointId> MatchToKeyFrame(const Frame& frame, const Frame& keyfram
     taken_distance[best_idx] = best;
     owner[best_idx] = static_cast<int>(k);
   }
-  int matched = 0;
   for (std::size_t i = 0; i < frame.size(); ++i) {
     if (matches[i] == kNoId) continue;
-    ++matched;
     binned.emplace_back(static_cast<int>(i),
                         RotationBin(keyframe_frame.keypoint(owner[i]).angle, frame.keypoint(i).angle));
   }
-  KeepDominantRotations(binned, &matches, &matched);
+  std::vector<int> bins;
+  for (const auto& [idx, bin] : binned) bins.push_back(bin);
+  const std::vector<bool> keep = InDominantRotationBins(bins);
+  for (std::size_t m = 0; m < binned.size(); ++m) {
+    if (!keep[m]) matches[binned[m].first] = kNoId;
+  }
   return matches;
 }
 

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 
+#include "dlslam/optimize/pose_optimizer.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam {
@@ -16,6 +17,36 @@ void BundleAdjusterOptions::Check() const {
   DLSLAM_CHECK_GT(chi2_mono, 0.0);
   DLSLAM_CHECK_GT(chi2_stereo, 0.0);
   DLSLAM_CHECK_GT(threads, 0);
+  DLSLAM_CHECK(function_tolerance >= 0 && function_tolerance < 1, "function_tolerance {} outside [0, 1)",
+               function_tolerance);
+}
+
+const char* ToString(BundleSolver solver) {
+  switch (solver) {
+    case BundleSolver::kCeres: return "ceres";
+    case BundleSolver::kLm: return "lm";
+  }
+  return "?";
+}
+
+BundleSolver ParseBundleSolver(const std::string& text) {
+  if (text == "ceres") return BundleSolver::kCeres;
+  if (text == "lm") return BundleSolver::kLm;
+  throw Error(fmt::format("unknown bundle solver '{}' (expected ceres or lm)", text));
+}
+
+BundleSummary SolveBundle(BundleProblem* problem, const BundleAdjusterOptions& options) {
+  return options.solver == BundleSolver::kCeres ? SolveBundleCeres(problem, options) : SolveBundleLm(problem, options);
+}
+
+double ObservationChi2(const BundleProblem& problem, const BundleProblem::Observation& o) {
+  PoseObservation po;
+  po.point_world = problem.points[o.point];
+  po.pixel = o.pixel;
+  po.right_u = o.right_u;
+  ObservationLinearization l;
+  if (!LinearizeObservation(problem.camera, problem.poses[o.pose].cam_from_world, po, false, &l)) return INFINITY;
+  return o.information * l.residual.head(l.rows).squaredNorm();
 }
 
 namespace {
@@ -65,7 +96,7 @@ double Chi2(const BundleProblem& problem, const BundleProblem::Observation& o,
 
 }  // namespace
 
-BundleSummary SolveBundle(BundleProblem* problem, const BundleAdjusterOptions& options) {
+BundleSummary SolveBundleCeres(BundleProblem* problem, const BundleAdjusterOptions& options) {
   options.Check();
   problem->camera.Check();
   BundleSummary summary;
@@ -109,6 +140,7 @@ BundleSummary SolveBundle(BundleProblem* problem, const BundleAdjusterOptions& o
     solver_options.max_num_iterations = iterations;
     solver_options.num_threads = options.threads;
     solver_options.logging_type = ceres::SILENT;
+    solver_options.function_tolerance = options.function_tolerance;
     ceres::Solver::Summary s;
     ceres::Solve(solver_options, &ceres_problem, &s);
     summary.iterations += static_cast<int>(s.iterations.size());

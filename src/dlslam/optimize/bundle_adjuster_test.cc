@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <string>
+
+#include "dlslam/util/check.h"
 
 namespace dlslam {
 namespace {
@@ -68,9 +71,22 @@ double MaxPoseError(const Scene& s) {
   return e;
 }
 
-TEST(BundleAdjuster, RecoversPosesAndPointsFromExactObservations) {
+// Every behaviour is checked for both solvers.
+class BundleAdjuster : public ::testing::TestWithParam<BundleSolver> {
+ protected:
+  BundleSummary Solve(BundleProblem* problem) const {
+    BundleAdjusterOptions options;
+    options.solver = GetParam();
+    return SolveBundle(problem, options);
+  }
+};
+
+INSTANTIATE_TEST_SUITE_P(Solvers, BundleAdjuster, ::testing::Values(BundleSolver::kCeres, BundleSolver::kLm),
+                         [](const auto& info) { return std::string(ToString(info.param)); });
+
+TEST_P(BundleAdjuster, RecoversPosesAndPointsFromExactObservations) {
   Scene s = MakeScene(0.0, 0.0, 1);
-  const BundleSummary summary = SolveBundle(&s.problem);
+  const BundleSummary summary = Solve(&s.problem);
   EXPECT_LT(MaxPoseError(s), 1e-6);
   // Points seen once without depth are free along their ray: skip them.
   std::vector<int> constraints(s.true_points.size(), 0);
@@ -85,16 +101,16 @@ TEST(BundleAdjuster, RecoversPosesAndPointsFromExactObservations) {
   EXPECT_LT(summary.final_cost, 1e-8 * summary.initial_cost + 1e-12);
 }
 
-TEST(BundleAdjuster, FixedPosesDoNotMove) {
+TEST_P(BundleAdjuster, FixedPosesDoNotMove) {
   Scene s = MakeScene(1.0, 0.0, 2);
   const SE3d before = s.problem.poses[0].cam_from_world;
-  SolveBundle(&s.problem);
+  Solve(&s.problem);
   EXPECT_EQ(s.problem.poses[0].cam_from_world.matrix(), before.matrix());
 }
 
-TEST(BundleAdjuster, FlagsOutliersAndStaysAccurate) {
+TEST_P(BundleAdjuster, FlagsOutliersAndStaysAccurate) {
   Scene s = MakeScene(0.5, 0.1, 3);
-  const BundleSummary summary = SolveBundle(&s.problem);
+  const BundleSummary summary = Solve(&s.problem);
   int caught = 0, false_alarms = 0, outliers = 0;
   for (std::size_t k = 0; k < s.is_outlier.size(); ++k) {
     outliers += s.is_outlier[k];
@@ -107,10 +123,17 @@ TEST(BundleAdjuster, FlagsOutliersAndStaysAccurate) {
   EXPECT_LT(MaxPoseError(s), 0.005);
 }
 
-TEST(BundleAdjuster, EmptyProblemIsANoOp) {
+TEST_P(BundleAdjuster, EmptyProblemIsANoOp) {
   BundleProblem p;
   p.camera = CameraPreset("fr3");
-  EXPECT_EQ(SolveBundle(&p).iterations, 0);
+  EXPECT_EQ(Solve(&p).iterations, 0);
+}
+
+TEST(BundleSolver, ParsesItsNamesAndRejectsOthers) {
+  EXPECT_EQ(ParseBundleSolver("ceres"), BundleSolver::kCeres);
+  EXPECT_EQ(ParseBundleSolver("lm"), BundleSolver::kLm);
+  EXPECT_STREQ(ToString(ParseBundleSolver("lm")), "lm");
+  EXPECT_THROW(ParseBundleSolver("g2o"), Error);
 }
 
 }  // namespace
