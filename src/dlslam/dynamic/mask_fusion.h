@@ -1,0 +1,53 @@
+#pragma once
+// Combines the semantic prior (segments of a-priori dynamic classes, e.g.
+// people) with the geometry result into the mask of pixels whose keypoints
+// and map points the system drops.
+
+#include <opencv2/core.hpp>
+
+#include <string>
+
+#include "dlslam/dynamic/geometry_detector.h"
+
+namespace dlslam::dynamic {
+
+enum class FusionPolicy {
+  // semantic OR geometry: the paper's policy.
+  kUnion,
+  // Geometry regions are always dropped; a semantic segment (connected
+  // component) is kept for SLAM when geometry shows it still: at least
+  // min_static_evidence static points inside and at most
+  // max_dynamic_evidence dynamic ones (e.g. people sitting). Without enough
+  // evidence a segment is dropped, as in kUnion.
+  kGeometryConfirms,
+  kSemanticOnly,
+  kGeometryOnly,
+};
+// "union", "geometry_confirms", "semantic", "geometry".
+std::string ToString(FusionPolicy policy);
+// Parses the names above; throws dlslam::Error listing them otherwise.
+FusionPolicy ParseFusionPolicy(const std::string& name);
+
+struct FusionOptions {
+  FusionPolicy policy = FusionPolicy::kUnion;
+  // kGeometryConfirms: static points a semantic segment needs to be kept.
+  int min_static_evidence = 5;
+  // kGeometryConfirms: dynamic points a kept segment may contain (outliers).
+  int max_dynamic_evidence = 0;
+  // The fused mask is dilated by this radius [px] (elliptic kernel): keypoint
+  // patches near a silhouette see the mover too. 0 = no dilation.
+  double dilation_px = 5.0;
+
+  // Throws dlslam::Error naming the field and its value.
+  void Check() const;
+};
+
+// `semantic_prior`: CV_8UC1 (non-zero = a-priori dynamic) or empty.
+// `geometry`: a GeometryResult, or one with an empty dynamic_mask when the
+// geometry check did not run. Returns CV_8UC1, 255 = dynamic, of the size of
+// whichever input is present; an empty Mat when both are empty. Throws
+// dlslam::Error when both are present with different sizes or a wrong type.
+cv::Mat FuseDynamicMasks(const cv::Mat& semantic_prior, const GeometryResult& geometry,
+                         const FusionOptions& options);
+
+}  // namespace dlslam::dynamic

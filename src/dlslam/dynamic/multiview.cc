@@ -1,0 +1,138 @@
+#include "dlslam/dynamic/multiview.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "dlslam/util/check.h"
+
+namespace dlslam::dynamic {
+
+void MultiViewOptions::Check() const {
+  DLSLAM_CHECK(max_reference_views >= 1 && max_reference_views <= 100,
+               "MultiViewOptions::max_reference_views {} outside [1, 100]", max_reference_views);
+  DLSLAM_CHECK(max_view_angle_deg > 0 && max_view_angle_deg <= 180,
+               "MultiViewOptions::max_view_angle_deg {} outside (0, 180]", max_view_angle_deg);
+  DLSLAM_CHECK(depth_threshold_m > 0 && depth_threshold_m <= 10,
+               "MultiViewOptions::depth_threshold_m {} outside (0, 10]", depth_threshold_m);
+  DLSLAM_CHECK(depth_threshold_per_m2 >= 0 && depth_threshold_per_m2 <= 1,
+               "MultiViewOptions::depth_threshold_per_m2 {} outside [0, 1]",
+               depth_threshold_per_m2);
+  DLSLAM_CHECK(depth_patch_radius_px >= 0 && depth_patch_radius_px <= 20,
+               "MultiViewOptions::depth_patch_radius_px {} outside [0, 20]",
+               depth_patch_radius_px);
+  DLSLAM_CHECK(min_depth_m > 0 && min_depth_m < max_depth_m,
+               "MultiViewOptions: need 0 < min_depth_m {} < max_depth_m {}", min_depth_m,
+               max_depth_m);
+}
+
+const char* ToString(PointLabel label) {
+  switch (label) {
+    case PointLabel::kUntested: return "untested";
+    case PointLabel::kUnknown: return "unknown";
+    case PointLabel::kUnreliable: return "unreliable";
+    case PointLabel::kStatic: return "static";
+    case PointLabel::kDynamic: return "dynamic";
+    case PointLabel::kVanished: return "vanished";
+  }
+  return "?";
+}
+
+void ProjectReferencePoints(const std::vector<ReferenceView>& references,
+                            const SE3d& cam_from_world, const CameraIntrinsics& intrinsics,
+                            std::vector<ProjectedPoint>& out) {
+  out.clear();
+  const Eigen::Vector3d current_centre = cam_from_world.Inverse().translation();
+  const bool distort = intrinsics.HasDistortion();
+  const double max_u = intrinsics.width - 0.5;
+  const double max_v = intrinsics.height - 0.5;
+  constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+  for (std::size_t v = 0; v < references.size(); ++v) {
+    const ReferenceView& view = references[v];
+    const Eigen::Vector3d reference_centre = view.cam_from_world.Inverse().translation();
+    for (std::size_t p = 0; p < view.points.size(); ++p) {
+      const Eigen::Vector3d& x_world = view.points[p].position_world;
+      const Eigen::Vector3d x_cam = cam_from_world * x_world;
+      if (!(x_cam.z() > 1e-6)) continue;
+      const Eigen::Vector2d normalised(x_cam.x() / x_cam.z(), x_cam.y() / x_cam.z());
+      const Eigen::Vector2d n = distort ? intrinsics.Distort(normalised) : normalised;
+      const double u = intrinsics.fx * n.x() + intrinsics.cx;
+      const double w = intrinsics.fy * n.y() + intrinsics.cy;
+      // Pixel centres are integers: the image covers [-0.5, size - 0.5).
+      if (!(u >= -0.5 && u < max_u && w >= -0.5 && w < max_v)) continue;
+      const Eigen::Vector3d ray_current = x_world - current_centre;
+      const Eigen::Vector3d ray_reference = x_world - reference_centre;
+      const double denominator = ray_current.norm() * ray_reference.norm();
+      const double cosine =
+          denominator > 0 ? std::clamp(ray_current.dot(ray_reference) / denominator, -1.0, 1.0)
+                          : 1.0;
+      ProjectedPoint& out_point = out.emplace_back();
+      out_point.pixel = Eigen::Vector2f(static_cast<float>(u), static_cast<float>(w));
+      out_point.projected_depth = static_cast<float>(x_cam.z());
+      out_point.view_angle_deg = static_cast<float>(std::acos(cosine) * kRadToDeg);
+      out_point.view = static_cast<int>(v);
+      out_point.point = static_cast<int>(p);
+    }
+  }
+}
+
+std::vector<ProjectedPoint> ProjectReferencePoints(const std::vector<ReferenceView>& references,
+                                                   const SE3d& cam_from_world,
+                                                   const CameraIntrinsics& intrinsics) {
+  std::vector<ProjectedPoint> out;
+  ProjectReferencePoints(references, cam_from_world, intrinsics, out);
+  return out;
+}
+
+float NearestValidDepth(const cv::Mat& depth, const Eigen::Vector2f& pixel, int radius_px,
+                        float min_depth_m, float max_depth_m) {
+  const int u0 = static_cast<int>(std::lround(pixel.x()));
+  const int v0 = static_cast<int>(std::lround(pixel.y()));
+  // Rings of growing Chebyshev radius; within a ring the smallest Euclidean
+  // distance wins, so the result is the nearest valid pixel up to the ring
+  // order (a ring-r pixel is never nearer than sqrt(2) times a ring-(r-1) one).
+  for (int r = 0; r <= radius_px; ++r) {
+    float best = 0.0f;
+    int best_distance2 = std::numeric_limits<int>::max();
+    for (int dv = -r; dv <= r; ++dv) {
+      const int v = v0 + dv;
+      if (v < 0 || v >= depth.rows) continue;
+      const float* row = depth.ptr<float>(v);
+      const bool edge_row = dv == -r || dv == r;
+      for (int du = -r; du <= r; du += edge_row ? 1 : 2 * r) {
+        const int u = u0 + du;
+        if (u >= 0 && u < depth.cols) {
+          const float d = row[u];
+          const int distance2 = du * du + dv * dv;
+          // NaN fails both comparisons.
+          if (d >= min_depth_m && d <= max_depth_m && distance2 < best_distance2) {
+            best = d;
+            best_distance2 = distance2;
+          }
+        }
+        if (r == 0) break;
+      }
+    }
+    if (best > 0.0f) return best;
+  }
+  return 0.0f;
+}
+
+PointLabel ClassifyPoint(const ProjectedPoint& point, const cv::Mat& depth,
+                         const MultiViewOptions& options) {
+  const double z = point.projected_depth;
+  if (!(z >= options.min_depth_m && z <= options.max_depth_m)) return PointLabel::kUnknown;
+  if (point.view_angle_deg > options.max_view_angle_deg) return PointLabel::kUnreliable;
+  const float measured =
+      NearestValidDepth(depth, point.pixel, options.depth_patch_radius_px,
+                        static_cast<float>(options.min_depth_m),
+                        static_cast<float>(options.max_depth_m));
+  if (measured <= 0.0f) return PointLabel::kUnknown;
+  const double difference = z - measured;  // > 0: something in front
+  const double threshold = options.DepthThreshold(z);
+  if (difference > threshold) return PointLabel::kDynamic;
+  if (difference < -threshold) return PointLabel::kVanished;
+  return PointLabel::kStatic;
+}
+
+}  // namespace dlslam::dynamic

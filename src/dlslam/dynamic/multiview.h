@@ -1,0 +1,114 @@
+#pragma once
+// Multi-view consistency check (after DynaSLAM, paper Sec. III-C): keypoints
+// with depth of earlier keyframes ("reference views") are projected into the
+// current frame and compared with the current depth image.
+//
+//   current depth << projected depth : something now stands in front of the
+//                                      point -> the current pixel is dynamic;
+//   current depth >> projected depth : the earlier point itself has left
+//                                      (it was on a moving object) -> vanished;
+//   otherwise                        : static.
+//
+// Points seen under viewing rays more than ~30 deg apart are not used to
+// decide (occlusion by static structure and surface slant make them
+// unreliable).
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "dlslam/data/camera.h"
+#include "dlslam/geometry/se3.h"
+
+namespace dlslam::dynamic {
+
+struct MultiViewOptions {
+  // Reference views used per frame (the first ones of the list the caller
+  // passes, so the caller orders them by relevance) [count, >= 1].
+  int max_reference_views = 5;
+  // Points whose viewing rays from the reference and the current camera
+  // centre differ by more than this are unreliable [deg] (DynaSLAM: 30).
+  double max_view_angle_deg = 30.0;
+  // Depth-difference threshold th(z) = depth_threshold_m +
+  // depth_threshold_per_m2 * z^2, z = projected depth [m]. The constant part
+  // [m] covers pose error and the distance to the nearest valid depth pixel.
+  double depth_threshold_m = 0.04;
+  // Growth with depth [1/m]: the Kinect's depth noise has a standard
+  // deviation of about 1.4e-3 * z^2 m (Khoshelham & Elberink 2012) for each
+  // of the two measurements compared; 3 sigma of their difference is
+  // 3 * sqrt(2) * 1.4e-3 ~ 6e-3.
+  double depth_threshold_per_m2 = 6e-3;
+  // The current depth is the valid pixel nearest to the projection within
+  // this Chebyshev radius [px]; none -> unknown.
+  int depth_patch_radius_px = 2;
+  // Depths outside [min_depth_m, max_depth_m] (projected or measured) are
+  // treated as invalid [m]; beyond ~5 m the Kinect's depth is too noisy.
+  double min_depth_m = 0.1;
+  double max_depth_m = 6.0;
+
+  // th(z) [m] for a projected depth z [m].
+  double DepthThreshold(double z) const {
+    return depth_threshold_m + depth_threshold_per_m2 * z * z;
+  }
+  // Throws dlslam::Error naming the field and its value.
+  void Check() const;
+};
+
+// One keypoint with depth of an earlier keyframe.
+struct ReferencePoint {
+  Eigen::Vector3d position_world = Eigen::Vector3d::Zero();  // [m]
+  // A map point id or any tag of the caller; reported for vanished points.
+  std::uint64_t id = std::numeric_limits<std::uint64_t>::max();
+};
+
+// An earlier keyframe: its pose and its keypoints with depth.
+struct ReferenceView {
+  SE3d cam_from_world;
+  std::vector<ReferencePoint> points;
+};
+
+enum class PointLabel : std::uint8_t {
+  kUntested,    // never tested (skipped by the search)
+  kUnknown,     // no valid current depth near the projection
+  kUnreliable,  // viewing rays too far apart
+  kStatic,      // depths agree
+  kDynamic,     // something now stands in front of the point
+  kVanished,    // the point has left (current depth clearly larger)
+};
+const char* ToString(PointLabel label);
+
+// A reference point seen in the current frame.
+struct ProjectedPoint {
+  // Current image position [px], on the distorted grid of the depth image.
+  Eigen::Vector2f pixel = Eigen::Vector2f::Zero();
+  float projected_depth = 0;  // z in the current camera [m]
+  float view_angle_deg = 0;   // angle between the two viewing rays [deg]
+  int view = 0;               // index into the reference views
+  int point = 0;              // index into that view's points
+};
+
+// Projects the points of all `references` into the current camera
+// (cam_from_world, intrinsics incl. distortion); keeps those in front of the
+// camera (z > 0) whose pixel lies inside the image. Appends to `out` after
+// clearing it (so a caller can reuse its buffer).
+void ProjectReferencePoints(const std::vector<ReferenceView>& references,
+                            const SE3d& cam_from_world, const CameraIntrinsics& intrinsics,
+                            std::vector<ProjectedPoint>& out);
+std::vector<ProjectedPoint> ProjectReferencePoints(const std::vector<ReferenceView>& references,
+                                                   const SE3d& cam_from_world,
+                                                   const CameraIntrinsics& intrinsics);
+
+// Labels one projected point against the current depth image (CV_32FC1,
+// metres, 0 or NaN = no measurement). Never returns kUntested.
+PointLabel ClassifyPoint(const ProjectedPoint& point, const cv::Mat& depth,
+                         const MultiViewOptions& options);
+
+// The nearest valid depth [m] to `pixel` within the Chebyshev radius (ties:
+// the first in row-major order of equal distance); 0 when there is none.
+float NearestValidDepth(const cv::Mat& depth, const Eigen::Vector2f& pixel, int radius_px,
+                        float min_depth_m, float max_depth_m);
+
+}  // namespace dlslam::dynamic
