@@ -8,8 +8,8 @@
 
 #include <string>
 
-#include "dlslam/dynamic/fusion.h"
 #include "dlslam/dynamic/geometry_detector.h"
+#include "dlslam/dynamic/mask_fusion.h"
 
 namespace dlslam {
 
@@ -30,7 +30,9 @@ struct DynamicOptions {
   // growing. geometry.multiview.max_reference_views is how many earlier
   // keyframes are projected into each frame (paper: 5).
   dynamic::GeometryOptions geometry;
-  // How the semantic prior and the geometric mask combine in mode full.
+  // How the semantic prior and the geometric mask combine in mode full, and
+  // the dilation of the removal mask in every mode (modes semantic and
+  // geometry use policies semantic and geometry with the same dilation).
   dynamic::FusionOptions fusion;
   // Map points that geometry shows to have moved away (a reference keyframe
   // saw them, the current depth sees through where they were) are removed

@@ -47,24 +47,30 @@ DynamicStage::DynamicStage(const DynamicOptions& options, const CameraIntrinsics
   DLSLAM_CHECK(map_ != nullptr && tracker_ != nullptr && timings_ != nullptr);
   stats_.mode = options_.mode;
   stats_.search = options_.geometry.search;
+  stats_.fusion = options_.fusion.policy;
 }
 
 void DynamicStage::Process(Frame* frame, const cv::Mat& depth, const DynamicInputs& inputs) {
   DLSLAM_CHECK(frame != nullptr);
   for (std::size_t i = 0; i < frame->size(); ++i) frame->SetIgnored(i, false);
-  const cv::Mat prior = UsesSemanticPrior(options_.mode) ? SemanticPrior(inputs) : cv::Mat();
-  cv::Mat removal = prior;
-  if (UsesGeometry(options_.mode) && !depth.empty()) {
-    // The first pose estimate must not lean on what the network already
-    // knows to move: flag the prior's keypoints before estimating.
-    if (!prior.empty()) frame->IgnoreMasked(prior);
-    Stopwatch watch;
-    cv::Mat geometric = GeometricRemoval(*frame, depth, prior);
-    timings_->Add("geometry", watch.ElapsedMs());
-    if (!geometric.empty()) removal = geometric;
-    for (std::size_t i = 0; i < frame->size(); ++i) frame->SetIgnored(i, false);
+  if (options_.mode != DynamicMode::kOrb) {
+    const cv::Mat prior = UsesSemanticPrior(options_.mode) ? SemanticPrior(inputs) : cv::Mat();
+    dynamic::GeometryResult geometry;  // empty mask: the check did not run
+    if (UsesGeometry(options_.mode) && !depth.empty()) {
+      // The first pose estimate must not lean on what the network already
+      // knows to move: flag the prior's keypoints while estimating.
+      if (!prior.empty()) frame->IgnoreMasked(prior);
+      Stopwatch watch;
+      geometry = DetectGeometrically(*frame, depth);
+      timings_->Add("geometry", watch.ElapsedMs());
+      for (std::size_t i = 0; i < frame->size(); ++i) frame->SetIgnored(i, false);
+    }
+    dynamic::FusionOptions fusion = options_.fusion;
+    if (options_.mode == DynamicMode::kSemantic) fusion.policy = dynamic::FusionPolicy::kSemanticOnly;
+    if (options_.mode == DynamicMode::kGeometry) fusion.policy = dynamic::FusionPolicy::kGeometryOnly;
+    const cv::Mat removal = dynamic::FuseDynamicMasks(prior, geometry, fusion);
+    if (!removal.empty()) stats_.keypoints_removed += frame->IgnoreMasked(removal);
   }
-  if (!removal.empty()) stats_.keypoints_removed += frame->IgnoreMasked(removal);
   if (!inputs.moving_truth.empty()) CountAgainstTruth(*frame, inputs.moving_truth);
 }
 
@@ -80,7 +86,7 @@ cv::Mat DynamicStage::SemanticPrior(const DynamicInputs& inputs) {
   return prior;
 }
 
-cv::Mat DynamicStage::GeometricRemoval(const Frame& frame, const cv::Mat& depth, const cv::Mat& prior) {
+dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, const cv::Mat& depth) {
   DLSLAM_CHECK(depth.type() == CV_32FC1 && depth.cols == camera_.width && depth.rows == camera_.height,
                "depth must be float metres {}x{}", camera_.width, camera_.height);
   const std::optional<SE3d> cam_from_world = tracker_->EstimatePose(frame);
@@ -91,7 +97,7 @@ cv::Mat DynamicStage::GeometricRemoval(const Frame& frame, const cv::Mat& depth,
     views.push_back(MakeReferenceView(kf));
   }
   if (views.empty()) return {};
-  const dynamic::GeometryResult result = detector_.Detect(depth, camera_, *cam_from_world, views);
+  dynamic::GeometryResult result = detector_.Detect(depth, camera_, *cam_from_world, views);
   ++stats_.frames_with_geometry;
   stats_.keypoints_tested += result.points_tested;
   stats_.keypoints_dynamic += result.points_dynamic;
@@ -102,10 +108,7 @@ cv::Mat DynamicStage::GeometricRemoval(const Frame& frame, const cv::Mat& depth,
     }
     stats_.map_points_culled += map_->ErasePoints(doomed);
   }
-  // Mode geometry has no prior: its removal is the geometric mask itself,
-  // whatever the fusion policy says about priors.
-  if (options_.mode == DynamicMode::kGeometry) return result.dynamic_mask;
-  return dynamic::FuseDynamicMasks(prior, result, options_.fusion);
+  return result;
 }
 
 void DynamicStage::CountAgainstTruth(const Frame& frame, const cv::Mat& truth) {

@@ -35,7 +35,8 @@ struct DynamicInputs {
 // Totals over a run.
 struct DynamicStats {
   DynamicMode mode = DynamicMode::kOrb;
-  dynamic::SearchKind search = dynamic::SearchKind::kExhaustive;
+  dynamic::SearchKind search = dynamic::SearchKind::kAntColony;
+  dynamic::FusionPolicy fusion = dynamic::FusionPolicy::kUnion;  // as configured (used in mode full)
   std::int64_t keypoints_tested = 0;   // projected reference points tested by geometry
   std::int64_t keypoints_dynamic = 0;  // of those, found moving
   std::int64_t keypoints_removed = 0;  // frame keypoints ignored (prior, geometry or both)
@@ -72,8 +73,9 @@ class DynamicStage {
 
  private:
   cv::Mat SemanticPrior(const DynamicInputs& inputs);
-  // The geometric mask (empty when the check cannot run), fused with the prior in mode full.
-  cv::Mat GeometricRemoval(const Frame& frame, const cv::Mat& depth, const cv::Mat& prior);
+  // The multi-view check with the tracker's first pose estimate; a result
+  // with an empty mask when it cannot run (not tracking, no keyframe).
+  dynamic::GeometryResult DetectGeometrically(const Frame& frame, const cv::Mat& depth);
   void CountAgainstTruth(const Frame& frame, const cv::Mat& truth);
 
   DynamicOptions options_;
