@@ -73,7 +73,7 @@ class GeometryDetector {
  private:
   GeometryOptions options_;
   std::unique_ptr<PointSearch> search_;
-  std::vector<ReferenceView> used_references_;  // the truncated list (buffer)
+  std::vector<cv::Point> depth_pixels_;  // per point: the pixel that decided (buffer)
 };
 
 }  // namespace dlslam::dynamic

@@ -40,14 +40,14 @@ const char* ToString(PointLabel label) {
 
 void ProjectReferencePoints(const std::vector<ReferenceView>& references,
                             const SE3d& cam_from_world, const CameraIntrinsics& intrinsics,
-                            std::vector<ProjectedPoint>& out) {
+                            std::vector<ProjectedPoint>& out, std::size_t max_views) {
   out.clear();
   const Eigen::Vector3d current_centre = cam_from_world.Inverse().translation();
   const bool distort = intrinsics.HasDistortion();
   const double max_u = intrinsics.width - 0.5;
   const double max_v = intrinsics.height - 0.5;
   constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-  for (std::size_t v = 0; v < references.size(); ++v) {
+  for (std::size_t v = 0; v < std::min(references.size(), max_views); ++v) {
     const ReferenceView& view = references[v];
     const Eigen::Vector3d reference_centre = view.cam_from_world.Inverse().translation();
     for (std::size_t p = 0; p < view.points.size(); ++p) {
@@ -85,14 +85,14 @@ std::vector<ProjectedPoint> ProjectReferencePoints(const std::vector<ReferenceVi
 }
 
 float NearestValidDepth(const cv::Mat& depth, const Eigen::Vector2f& pixel, int radius_px,
-                        float min_depth_m, float max_depth_m) {
+                        float min_depth_m, float max_depth_m, cv::Point* where) {
   const int u0 = static_cast<int>(std::lround(pixel.x()));
   const int v0 = static_cast<int>(std::lround(pixel.y()));
-  // Rings of growing Chebyshev radius; within a ring the smallest Euclidean
-  // distance wins, so the result is the nearest valid pixel up to the ring
-  // order (a ring-r pixel is never nearer than sqrt(2) times a ring-(r-1) one).
+  // Ring r holds distances in [r, r * sqrt(2)], so for radii <= 2 the first
+  // ring with a valid pixel holds the nearest one (beyond, nearly so).
   for (int r = 0; r <= radius_px; ++r) {
     float best = 0.0f;
+    cv::Point best_pixel;
     int best_distance2 = std::numeric_limits<int>::max();
     for (int dv = -r; dv <= r; ++dv) {
       const int v = v0 + dv;
@@ -107,26 +107,30 @@ float NearestValidDepth(const cv::Mat& depth, const Eigen::Vector2f& pixel, int 
           // NaN fails both comparisons.
           if (d >= min_depth_m && d <= max_depth_m && distance2 < best_distance2) {
             best = d;
+            best_pixel = cv::Point(u, v);
             best_distance2 = distance2;
           }
         }
         if (r == 0) break;
       }
     }
-    if (best > 0.0f) return best;
+    if (best > 0.0f) {
+      if (where != nullptr) *where = best_pixel;
+      return best;
+    }
   }
   return 0.0f;
 }
 
 PointLabel ClassifyPoint(const ProjectedPoint& point, const cv::Mat& depth,
-                         const MultiViewOptions& options) {
+                         const MultiViewOptions& options, cv::Point* depth_pixel) {
   const double z = point.projected_depth;
   if (!(z >= options.min_depth_m && z <= options.max_depth_m)) return PointLabel::kUnknown;
   if (point.view_angle_deg > options.max_view_angle_deg) return PointLabel::kUnreliable;
   const float measured =
       NearestValidDepth(depth, point.pixel, options.depth_patch_radius_px,
                         static_cast<float>(options.min_depth_m),
-                        static_cast<float>(options.max_depth_m));
+                        static_cast<float>(options.max_depth_m), depth_pixel);
   if (measured <= 0.0f) return PointLabel::kUnknown;
   const double difference = z - measured;  // > 0: something in front
   const double threshold = options.DepthThreshold(z);

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -90,25 +91,30 @@ struct ProjectedPoint {
   int point = 0;              // index into that view's points
 };
 
-// Projects the points of all `references` into the current camera
-// (cam_from_world, intrinsics incl. distortion); keeps those in front of the
-// camera (z > 0) whose pixel lies inside the image. Appends to `out` after
-// clearing it (so a caller can reuse its buffer).
+// Projects the points of the first `max_views` `references` into the
+// current camera (cam_from_world, intrinsics incl. distortion); keeps those
+// in front of the camera (z > 0) whose pixel lies inside the image. Clears
+// `out` first (so a caller can reuse its buffer).
 void ProjectReferencePoints(const std::vector<ReferenceView>& references,
                             const SE3d& cam_from_world, const CameraIntrinsics& intrinsics,
-                            std::vector<ProjectedPoint>& out);
+                            std::vector<ProjectedPoint>& out,
+                            std::size_t max_views = std::numeric_limits<std::size_t>::max());
 std::vector<ProjectedPoint> ProjectReferencePoints(const std::vector<ReferenceView>& references,
                                                    const SE3d& cam_from_world,
                                                    const CameraIntrinsics& intrinsics);
 
 // Labels one projected point against the current depth image (CV_32FC1,
-// metres, 0 or NaN = no measurement). Never returns kUntested.
+// metres, 0 or NaN = no measurement). Never returns kUntested. `depth_pixel`
+// (optional) receives the pixel whose depth decided (for kStatic, kDynamic,
+// kVanished): a dynamic point's occluder, the seed of region growing.
 PointLabel ClassifyPoint(const ProjectedPoint& point, const cv::Mat& depth,
-                         const MultiViewOptions& options);
+                         const MultiViewOptions& options, cv::Point* depth_pixel = nullptr);
 
-// The nearest valid depth [m] to `pixel` within the Chebyshev radius (ties:
-// the first in row-major order of equal distance); 0 when there is none.
+// The valid depth [m] nearest to `pixel` (rounded) within the Chebyshev
+// radius: rings of growing radius, within a ring the smallest Euclidean
+// distance (then row-major order); 0 when there is none. `where` (optional)
+// receives its pixel.
 float NearestValidDepth(const cv::Mat& depth, const Eigen::Vector2f& pixel, int radius_px,
-                        float min_depth_m, float max_depth_m);
+                        float min_depth_m, float max_depth_m, cv::Point* where = nullptr);
 
 }  // namespace dlslam::dynamic

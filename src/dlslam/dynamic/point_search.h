@@ -46,6 +46,10 @@ struct AntColonyOptions {
   // (1 + hop length in cells) when the path picks its next cell [>= 0].
   double alpha = 1.0;
   double beta = 2.0;
+  // Ant Colony System's pseudo-random proportional rule: with probability q0
+  // the path takes the best cell by Eq. 4, otherwise it samples Eq. 4
+  // [0, 1]. q0 = 1: a deterministic sweep that follows the pheromone.
+  double q0 = 0.9;
   // Eq. 5 evaporation per frame, rho in [0, 1).
   double rho = 0.3;
   // Eq. 6 deposit per dynamic (or vanished) point found in a cell.
@@ -59,6 +63,9 @@ struct AntColonyOptions {
   // Vanished points (the earlier point left) count as motion evidence: the
   // search expands around them like around dynamic points.
   bool expand_on_vanished = true;
+  // Tests per frame at most (0 = no limit): a real-time budget; the path
+  // visits high-pheromone cells first, so a cut costs least there.
+  int max_tests = 0;
   // Seed of the path's random choices (std::mt19937); same seed, same inputs
   // -> same tests.
   std::uint32_t seed = 5489u;

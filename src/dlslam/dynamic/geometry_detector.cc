@@ -1,0 +1,79 @@
+#include "dlslam/dynamic/geometry_detector.h"
+
+#include "dlslam/dynamic/ant_colony_search.h"
+#include "dlslam/util/check.h"
+
+namespace dlslam::dynamic {
+
+std::string ToString(SearchKind kind) {
+  return kind == SearchKind::kExhaustive ? "exhaustive" : "ant";
+}
+
+SearchKind ParseSearchKind(const std::string& name) {
+  if (name == "exhaustive") return SearchKind::kExhaustive;
+  if (name == "ant" || name == "ant_colony") return SearchKind::kAntColony;
+  throw Error(fmt::format("unknown search strategy '{}' (valid: exhaustive, ant)", name));
+}
+
+void GeometryOptions::Check() const {
+  multiview.Check();
+  ant.Check();
+  region.Check();
+}
+
+GeometryDetector::GeometryDetector(const GeometryOptions& options) : options_(options) {
+  options_.Check();
+  if (options_.search == SearchKind::kAntColony) {
+    search_ = MakeAntColonySearch(options_.ant);
+  } else {
+    search_ = MakeExhaustiveSearch();
+  }
+}
+
+GeometryDetector::~GeometryDetector() = default;
+GeometryDetector::GeometryDetector(GeometryDetector&&) noexcept = default;
+GeometryDetector& GeometryDetector::operator=(GeometryDetector&&) noexcept = default;
+
+GeometryResult GeometryDetector::Detect(const cv::Mat& depth, const CameraIntrinsics& intrinsics,
+                                        const SE3d& cam_from_world,
+                                        const std::vector<ReferenceView>& references) {
+  DLSLAM_CHECK(depth.type() == CV_32FC1,
+               "GeometryDetector: depth must be CV_32FC1 metres, got OpenCV type {}", depth.type());
+  DLSLAM_CHECK(depth.cols == intrinsics.width && depth.rows == intrinsics.height,
+               "GeometryDetector: depth is {}x{}, the camera {}x{}", depth.cols, depth.rows,
+               intrinsics.width, intrinsics.height);
+  GeometryResult result;
+  ProjectReferencePoints(references, cam_from_world, intrinsics, result.points,
+                         static_cast<std::size_t>(options_.multiview.max_reference_views));
+  const std::size_t n = result.points.size();
+  depth_pixels_.resize(n);
+  const MultiViewOptions& multiview = options_.multiview;
+  SearchResult search = search_->Search(
+      result.points, depth.size(), [&](std::size_t i) {
+        return ClassifyPoint(result.points[i], depth, multiview, &depth_pixels_[i]);
+      });
+  result.labels = std::move(search.labels);
+  result.points_projected = static_cast<int>(n);
+  result.points_tested = search.tested;
+
+  std::vector<cv::Point2f> seeds;
+  for (std::size_t i = 0; i < n; ++i) {
+    const PointLabel label = result.labels[i];
+    if (label == PointLabel::kDynamic) {
+      ++result.points_dynamic;
+      seeds.emplace_back(depth_pixels_[i]);
+    } else if (label == PointLabel::kVanished) {
+      ++result.points_vanished;
+      if (options_.grow_from_vanished) seeds.emplace_back(depth_pixels_[i]);
+      const ProjectedPoint& p = result.points[i];
+      const std::uint64_t id = references[static_cast<std::size_t>(p.view)]
+                                   .points[static_cast<std::size_t>(p.point)]
+                                   .id;
+      if (id != std::numeric_limits<std::uint64_t>::max()) result.vanished_ids.push_back(id);
+    }
+  }
+  result.dynamic_mask = GrowDynamicRegions(depth, seeds, options_.region);
+  return result;
+}
+
+}  // namespace dlslam::dynamic
