@@ -35,12 +35,20 @@ AntColonySearch::AntColonySearch(const AntColonyOptions& options)
   options_.Check();
 }
 
+void AntColonySearch::set_max_tests(int max_tests) {
+  DLSLAM_CHECK_GE(max_tests, 0, "AntColonySearch::set_max_tests (0 = no limit)");
+  options_.max_tests = max_tests;
+}
+
 void AntColonySearch::ResetGrid(cv::Size image) {
   image_ = image;
   const int size = options_.cell_size_px;
   grid_cols_ = std::max(1, (image.width + size - 1) / size);
   grid_rows_ = std::max(1, (image.height + size - 1) / size);
   tau_.assign(static_cast<std::size_t>(grid_cols_) * grid_rows_, options_.tau_min);
+  near_size_ = std::clamp(static_cast<int>(std::ceil(options_.band_width_px)), 8, size);
+  near_cols_ = std::max(1, (image.width + near_size_ - 1) / near_size_);
+  near_rows_ = std::max(1, (image.height + near_size_ - 1) / near_size_);
   const int max_hop2 = (grid_cols_ - 1) * (grid_cols_ - 1) + (grid_rows_ - 1) * (grid_rows_ - 1);
   eta_beta_.resize(static_cast<std::size_t>(max_hop2) + 1);
   for (int d2 = 0; d2 <= max_hop2; ++d2) {
@@ -71,6 +79,30 @@ void AntColonySearch::BucketPoints(const std::vector<ProjectedPoint>& points) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto c = static_cast<std::size_t>(point_cell_[i]);
     cell_points_[static_cast<std::size_t>(candidates_[c]++)] = static_cast<int>(i);
+  }
+  // The same counting sort on the fine grid.
+  const auto near_cells = static_cast<std::size_t>(near_cols_) * near_rows_;
+  near_start_.assign(near_cells + 1, 0);
+  const float near = static_cast<float>(near_size_);
+  const auto near_cell = [&](const Eigen::Vector2f& pixel) {
+    const int cx = std::clamp(static_cast<int>(std::floor(pixel.x() / near)), 0, near_cols_ - 1);
+    const int cy = std::clamp(static_cast<int>(std::floor(pixel.y() / near)), 0, near_rows_ - 1);
+    return static_cast<std::size_t>(cy * near_cols_ + cx);
+  };
+  point_near_cell_.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    point_near_cell_[i] = static_cast<int>(near_cell(points[i].pixel));
+    ++near_start_[static_cast<std::size_t>(point_near_cell_[i]) + 1];
+  }
+  near_untested_.resize(near_cells);
+  for (std::size_t c = 0; c < near_cells; ++c) near_untested_[c] = near_start_[c + 1];
+  near_open_ = near_untested_;
+  for (std::size_t c = 0; c < near_cells; ++c) near_start_[c + 1] += near_start_[c];
+  candidates_.assign(near_start_.begin(), near_start_.end() - 1);
+  near_points_.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto c = static_cast<std::size_t>(point_near_cell_[i]);
+    near_points_[static_cast<std::size_t>(candidates_[c]++)] = static_cast<int>(i);
   }
 }
 
@@ -134,24 +166,33 @@ void AntColonySearch::BuildPath() {
   }
 }
 
+void AntColonySearch::SetState(int point, State state) {
+  const auto i = static_cast<std::size_t>(point);
+  const auto c = static_cast<std::size_t>(point_near_cell_[i]);
+  if (state_[i] == State::kOpen) --near_open_[c];
+  if (state == State::kTested) --near_untested_[c];
+  state_[i] = state;
+}
+
 template <typename Visit>
 void AntColonySearch::ForEachNear(const Eigen::Vector2f& centre, float radius,
-                                  Visit&& visit) const {
-  const float size = static_cast<float>(options_.cell_size_px);
+                                  const std::vector<int>& per_cell, Visit&& visit) const {
+  const float size = static_cast<float>(near_size_);
   const int x0 = std::clamp(static_cast<int>(std::floor((centre.x() - radius) / size)), 0,
-                            grid_cols_ - 1);
+                            near_cols_ - 1);
   const int x1 = std::clamp(static_cast<int>(std::floor((centre.x() + radius) / size)), 0,
-                            grid_cols_ - 1);
+                            near_cols_ - 1);
   const int y0 = std::clamp(static_cast<int>(std::floor((centre.y() - radius) / size)), 0,
-                            grid_rows_ - 1);
+                            near_rows_ - 1);
   const int y1 = std::clamp(static_cast<int>(std::floor((centre.y() + radius) / size)), 0,
-                            grid_rows_ - 1);
+                            near_rows_ - 1);
   const float radius2 = radius * radius;
   for (int y = y0; y <= y1; ++y) {
     for (int x = x0; x <= x1; ++x) {
-      const auto c = static_cast<std::size_t>(y * grid_cols_ + x);
-      for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
-        const int j = cell_points_[static_cast<std::size_t>(k)];
+      const auto c = static_cast<std::size_t>(y * near_cols_ + x);
+      if (per_cell[c] == 0) continue;
+      for (int k = near_start_[c]; k < near_start_[c + 1]; ++k) {
+        const int j = near_points_[static_cast<std::size_t>(k)];
         if (((*points_)[static_cast<std::size_t>(j)].pixel - centre).squaredNorm() <= radius2) {
           visit(j);
         }
@@ -191,7 +232,7 @@ SearchResult AntColonySearch::Search(const std::vector<ProjectedPoint>& points, 
   // Tests point j (once); true if it shows motion.
   const auto run_test = [&](int j) {
     const auto index = static_cast<std::size_t>(j);
-    state_[index] = State::kTested;
+    SetState(j, State::kTested);
     result.labels[index] = test(index);
     ++result.tested;
     return is_motion(result.labels[index]);
@@ -214,7 +255,8 @@ SearchResult AntColonySearch::Search(const std::vector<ProjectedPoint>& points, 
         while (!frontier_.empty() && result.tested < budget) {
           next_frontier_.clear();
           for (const int f : frontier_) {
-            ForEachNear(points[static_cast<std::size_t>(f)].pixel, reach, [&](int j) {
+            ForEachNear(points[static_cast<std::size_t>(f)].pixel, reach, near_untested_,
+                        [&](int j) {
               if (state_[static_cast<std::size_t>(j)] != State::kTested && result.tested < budget &&
                   run_test(j)) {
                 next_frontier_.push_back(j);
@@ -227,10 +269,8 @@ SearchResult AntColonySearch::Search(const std::vector<ProjectedPoint>& points, 
       } else if (result.labels[static_cast<std::size_t>(m)] == PointLabel::kStatic) {
         // Skip the static group; pheromone (recent motion) shrinks the group.
         const float skip = radius * static_cast<float>(options_.tau_min / tau_[c]);
-        ForEachNear(centre, skip, [&](int j) {
-          if (state_[static_cast<std::size_t>(j)] == State::kOpen) {
-            state_[static_cast<std::size_t>(j)] = State::kSkipped;
-          }
+        ForEachNear(centre, skip, near_open_, [&](int j) {
+          if (state_[static_cast<std::size_t>(j)] == State::kOpen) SetState(j, State::kSkipped);
         });
       }
     }

@@ -43,6 +43,9 @@ class AntColonySearch final : public PointSearch {
   // Path points m_i of the last call (point indices, in walking order).
   const std::vector<int>& last_path_points() const { return path_points_; }
   const AntColonyOptions& options() const { return options_; }
+  // Changes the per-frame test budget (AntColonyOptions::max_tests, >= 0),
+  // e.g. to follow the time left; the pheromone is kept.
+  void set_max_tests(int max_tests);
 
  private:
   enum class State : std::uint8_t { kOpen, kSkipped, kTested };
@@ -50,9 +53,13 @@ class AntColonySearch final : public PointSearch {
   void ResetGrid(cv::Size image);
   void BucketPoints(const std::vector<ProjectedPoint>& points);
   void BuildPath();
-  // Calls visit(j) for every point j within `radius` of `centre`.
+  // Calls visit(j) for every point j within `radius` of `centre`, in fine
+  // cells whose `per_cell` count is non-zero (cells with nothing left to do
+  // are not scanned).
   template <typename Visit>
-  void ForEachNear(const Eigen::Vector2f& centre, float radius, Visit&& visit) const;
+  void ForEachNear(const Eigen::Vector2f& centre, float radius, const std::vector<int>& per_cell,
+                   Visit&& visit) const;
+  void SetState(int point, State state);
   void UpdatePheromone(const std::vector<PointLabel>& labels);
   int CellOf(const Eigen::Vector2f& pixel) const;
 
@@ -67,6 +74,16 @@ class AntColonySearch final : public PointSearch {
   std::vector<int> cell_start_;   // counting sort: cell c holds cell_points_[start[c], start[c+1])
   std::vector<int> cell_points_;
   std::vector<int> point_cell_;
+  // A finer grid for the radius queries (cells ~ dh wide, so a query scans
+  // about 3x3 small cells instead of the path's large ones).
+  int near_size_ = 16;
+  int near_cols_ = 0;
+  int near_rows_ = 0;
+  std::vector<int> near_start_;
+  std::vector<int> near_points_;
+  std::vector<int> point_near_cell_;
+  std::vector<int> near_untested_;  // per fine cell: points not tested yet
+  std::vector<int> near_open_;      // per fine cell: points neither tested nor skipped
   std::vector<State> state_;
   std::vector<int> path_;
   std::vector<int> path_points_;

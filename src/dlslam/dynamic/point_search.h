@@ -44,8 +44,10 @@ struct AntColonyOptions {
   double band_width_px = 16.0;
   // Eq. 4 exponents: alpha weighs pheromone, beta the heuristic eta = 1 /
   // (1 + hop length in cells) when the path picks its next cell [>= 0].
+  // beta = 4 keeps about half the roulette mass on the 8 neighbours (with 2
+  // the many far cells together outweigh them and the path scatters).
   double alpha = 1.0;
-  double beta = 2.0;
+  double beta = 4.0;
   // Ant Colony System's pseudo-random proportional rule: with probability q0
   // the path takes the best cell by Eq. 4, otherwise it samples Eq. 4
   // [0, 1]. q0 = 1: a deterministic sweep that follows the pheromone.

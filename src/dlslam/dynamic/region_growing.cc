@@ -15,6 +15,9 @@ void RegionGrowingOptions::Check() const {
   DLSLAM_CHECK(max_depth_from_seed_m > 0 && max_depth_from_seed_m <= 100,
                "RegionGrowingOptions::max_depth_from_seed_m {} outside (0, 100]",
                max_depth_from_seed_m);
+  DLSLAM_CHECK(max_distance_from_seed_px >= 0,
+               "RegionGrowingOptions::max_distance_from_seed_px {} < 0 (0 = no limit)",
+               max_distance_from_seed_px);
   DLSLAM_CHECK(max_region_pixels >= 1, "RegionGrowingOptions::max_region_pixels {} < 1",
                max_region_pixels);
   DLSLAM_CHECK(min_depth_m > 0 && min_depth_m < max_depth_m,
@@ -33,6 +36,8 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const std::vector<cv::Point2f>&
   const float step_m = static_cast<float>(options.max_step_m);
   const float step_relative = static_cast<float>(options.max_step_relative);
   const float from_seed = static_cast<float>(options.max_depth_from_seed_m);
+  const double reach = options.max_distance_from_seed_px;
+  const long reach2 = reach > 0 ? static_cast<long>(reach * reach) : -1;
   const int cols = depth.cols;
   const int rows = depth.rows;
   // Breadth-first, so a region cut at max_region_pixels is a compact blob
@@ -65,6 +70,10 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const std::vector<cv::Point2f>&
         const float dn = depth.at<float>(n[1], n[0]);
         if (!(dn >= min_depth && dn <= max_depth)) continue;
         if (std::abs(dn - d) > max_step || std::abs(dn - seed_depth) > from_seed) continue;
+        if (reach2 >= 0) {
+          const long du = n[0] - u0, dv = n[1] - v0;
+          if (du * du + dv * dv > reach2) continue;
+        }
         m = 255;
         queue.push_back(n[1] * cols + n[0]);
         if (++region_pixels >= options.max_region_pixels) break;

@@ -20,6 +20,11 @@ struct RegionGrowingOptions {
   // fill leaking along surfaces that touch the object (the floor at the
   // feet); about a person's depth extent.
   double max_depth_from_seed_m = 0.5;
+  // A pixel joins only within this image distance of its region's seed [px]
+  // (0 = no limit): with many seeds on a mover the union still covers it,
+  // while a leak into a touching surface stays local. About a third of a
+  // person's width at 2 m.
+  double max_distance_from_seed_px = 40.0;
   // Pixels per region at most [px]; a region that reaches it stops growing
   // (a bad seed cannot flood the whole frame).
   int max_region_pixels = 60000;

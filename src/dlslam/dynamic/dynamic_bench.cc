@@ -1,0 +1,101 @@
+// Per-frame cost of the geometry check at 640x480: GeometryDetector::Detect()
+// with 5 reference keyframes of ~1000 ORB keypoints each, on a rendered
+// walking_xyz frame with ground-truth poses (frames rendered once, outside
+// the timing). Paper (Table 4): 136-190 ms per frame for its geometry thread.
+
+#include <benchmark/benchmark.h>
+
+#include "dlslam/dynamic/geometry_detector.h"
+#include "dlslam/dynamic/tools/keyframe_eval.h"
+
+namespace {
+
+using namespace dlslam;
+using namespace dlslam::dynamic;
+
+struct Fixture {
+  cv::Mat depth;
+  SE3d cam_from_world;
+  CameraIntrinsics camera;
+  std::vector<ReferenceView> references;
+};
+
+const Fixture& GetFixture() {
+  static const Fixture fixture = [] {
+    synth::SynthOptions options;
+    options.preset = synth::Preset::kWalkingXyz;
+    options.frames = 61;
+    const synth::SynthSequence sequence(options);
+    evaluation::SynthFrameCache cache(sequence);
+    Fixture f;
+    f.camera = options.camera;
+    const auto& current = cache.Get(60);
+    f.depth = current.rendered.depth;
+    f.cam_from_world = current.rendered.world_from_cam.Inverse();
+    for (int r = 1; r <= 5; ++r) {
+      const auto& keyframe = cache.Get(60 - 6 * r);
+      f.references.push_back(evaluation::MakeReferenceView(
+          keyframe.rendered.depth, keyframe.keypoints, f.camera, keyframe.rendered.world_from_cam,
+          static_cast<std::uint64_t>(r) << 20));
+    }
+    return f;
+  }();
+  return fixture;
+}
+
+void BM_Detect(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  GeometryOptions options;
+  options.search = state.range(0) == 0 ? SearchKind::kExhaustive : SearchKind::kAntColony;
+  GeometryDetector detector(options);
+  GeometryResult result;
+  for (auto _ : state) {
+    result = detector.Detect(f.depth, f.camera, f.cam_from_world, f.references);
+    benchmark::DoNotOptimize(result.dynamic_mask.data);
+  }
+  state.SetLabel(ToString(options.search));
+  state.counters["projected"] = result.points_projected;
+  state.counters["tested"] = result.points_tested;
+  state.counters["dynamic"] = result.points_dynamic;
+}
+BENCHMARK(BM_Detect)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// The stages alone (exhaustive): projection, classification, region growing.
+void BM_Project(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  std::vector<ProjectedPoint> points;
+  for (auto _ : state) {
+    ProjectReferencePoints(f.references, f.cam_from_world, f.camera, points);
+    benchmark::DoNotOptimize(points.data());
+  }
+}
+BENCHMARK(BM_Project)->Unit(benchmark::kMicrosecond);
+
+void BM_ClassifyAll(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  const auto points = ProjectReferencePoints(f.references, f.cam_from_world, f.camera);
+  const MultiViewOptions options;
+  for (auto _ : state) {
+    int dynamic = 0;
+    for (const ProjectedPoint& p : points) dynamic += ClassifyPoint(p, f.depth, options) == PointLabel::kDynamic;
+    benchmark::DoNotOptimize(dynamic);
+  }
+}
+BENCHMARK(BM_ClassifyAll)->Unit(benchmark::kMicrosecond);
+
+void BM_Search(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  const auto points = ProjectReferencePoints(f.references, f.cam_from_world, f.camera);
+  const MultiViewOptions options;
+  auto search = state.range(0) == 0 ? MakeExhaustiveSearch() : MakeAntColonySearch({});
+  for (auto _ : state) {
+    SearchResult r = search->Search(points, f.depth.size(), [&](std::size_t i) {
+      return ClassifyPoint(points[i], f.depth, options);
+    });
+    benchmark::DoNotOptimize(r.labels.data());
+  }
+  state.SetLabel(state.range(0) == 0 ? "exhaustive" : "ant");
+}
+BENCHMARK(BM_Search)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+}  // namespace

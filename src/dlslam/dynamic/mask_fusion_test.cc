@@ -1,0 +1,118 @@
+#include "dlslam/dynamic/mask_fusion.h"
+
+#include <gtest/gtest.h>
+
+#include "dlslam/util/check.h"
+
+namespace dlslam::dynamic {
+namespace {
+
+// Two semantic segments (people): A on the left, B on the right; the geometry
+// found a moving region C elsewhere; points: 6 static in A, 6 static + 1
+// dynamic in B.
+struct Scene {
+  cv::Rect a{10, 10, 20, 40}, b{60, 10, 20, 40}, c{100, 60, 10, 10};
+  cv::Mat semantic = cv::Mat::zeros(100, 120, CV_8UC1);
+  GeometryResult geometry;
+  Scene() {
+    semantic(a).setTo(1);  // any non-zero value marks a segment
+    semantic(b).setTo(200);
+    geometry.dynamic_mask = cv::Mat::zeros(semantic.size(), CV_8UC1);
+    geometry.dynamic_mask(c).setTo(255);
+    for (int i = 0; i < 6; ++i) {
+      Add(a.x + 2 + 3 * i, a.y + 5 + 5 * i, PointLabel::kStatic);
+      Add(b.x + 2 + 3 * i, b.y + 5 + 5 * i, PointLabel::kStatic);
+    }
+    Add(b.x + 10, b.y + 38, PointLabel::kDynamic);
+    Add(a.x + 5, a.y + 1, PointLabel::kUntested);  // no evidence
+  }
+  void Add(int u, int v, PointLabel label) {
+    ProjectedPoint p;
+    p.pixel = {static_cast<float>(u), static_cast<float>(v)};
+    geometry.points.push_back(p);
+    geometry.labels.push_back(label);
+  }
+};
+
+FusionOptions Policy(FusionPolicy policy) {
+  FusionOptions options;
+  options.policy = policy;
+  options.dilation_px = 0;
+  return options;
+}
+
+TEST(FuseDynamicMasks, Policies) {
+  const Scene s;
+  const int area_a = s.a.area(), area_b = s.b.area(), area_c = s.c.area();
+  const cv::Mat union_mask = FuseDynamicMasks(s.semantic, s.geometry, Policy(FusionPolicy::kUnion));
+  EXPECT_EQ(cv::countNonZero(union_mask), area_a + area_b + area_c);
+  EXPECT_EQ(union_mask.at<std::uint8_t>(s.a.y, s.a.x), 255);
+  EXPECT_EQ(cv::countNonZero(FuseDynamicMasks(s.semantic, s.geometry,
+                                              Policy(FusionPolicy::kSemanticOnly))),
+            area_a + area_b);
+  EXPECT_EQ(cv::countNonZero(FuseDynamicMasks(s.semantic, s.geometry,
+                                              Policy(FusionPolicy::kGeometryOnly))),
+            area_c);
+  // A is still (6 static >= 5, no dynamic): kept for SLAM, i.e. not masked;
+  // B shows a dynamic point: masked; C: always masked.
+  const cv::Mat confirmed =
+      FuseDynamicMasks(s.semantic, s.geometry, Policy(FusionPolicy::kGeometryConfirms));
+  EXPECT_EQ(cv::countNonZero(confirmed), area_b + area_c);
+  EXPECT_EQ(cv::countNonZero(confirmed(s.a)), 0);
+}
+
+TEST(FuseDynamicMasks, GeometryConfirmsNeedsEnoughEvidence) {
+  const Scene s;
+  FusionOptions options = Policy(FusionPolicy::kGeometryConfirms);
+  options.min_static_evidence = 7;  // A has 6: not enough, stays masked
+  EXPECT_EQ(cv::countNonZero(FuseDynamicMasks(s.semantic, s.geometry, options)),
+            s.a.area() + s.b.area() + s.c.area());
+  options.min_static_evidence = 5;
+  options.max_dynamic_evidence = 1;  // B's one dynamic point tolerated
+  EXPECT_EQ(cv::countNonZero(FuseDynamicMasks(s.semantic, s.geometry, options)), s.c.area());
+  // Without a geometry result nothing can be confirmed: the prior stays.
+  EXPECT_EQ(cv::countNonZero(FuseDynamicMasks(s.semantic, {}, options)),
+            s.a.area() + s.b.area());
+}
+
+TEST(FuseDynamicMasks, DilationAndEmptyInputs) {
+  const Scene s;
+  FusionOptions options = Policy(FusionPolicy::kGeometryOnly);
+  options.dilation_px = 2;
+  // The 10x10 square dilated by a radius-2 disc: it covers the square grown
+  // by 1 px, nothing beyond 2 px, and less than the full 14x14 (round corners).
+  const cv::Mat dilated = FuseDynamicMasks(s.semantic, s.geometry, options);
+  const cv::Rect grown1(s.c.x - 1, s.c.y - 1, 12, 12), grown2(s.c.x - 2, s.c.y - 2, 14, 14);
+  EXPECT_EQ(cv::countNonZero(dilated(grown1)), 12 * 12);
+  EXPECT_EQ(cv::countNonZero(dilated), cv::countNonZero(dilated(grown2)));
+  EXPECT_LT(cv::countNonZero(dilated), 14 * 14);
+  EXPECT_TRUE(FuseDynamicMasks({}, {}, options).empty());
+  const cv::Mat only_semantic = FuseDynamicMasks(s.semantic, {}, Policy(FusionPolicy::kUnion));
+  EXPECT_EQ(cv::countNonZero(only_semantic), s.a.area() + s.b.area());
+  const cv::Mat only_geometry = FuseDynamicMasks({}, s.geometry, Policy(FusionPolicy::kSemanticOnly));
+  EXPECT_EQ(only_geometry.size(), s.semantic.size());
+  EXPECT_EQ(cv::countNonZero(only_geometry), 0);
+}
+
+TEST(FuseDynamicMasks, RejectsMismatchedInputs) {
+  const Scene s;
+  EXPECT_THROW(FuseDynamicMasks(cv::Mat::zeros(10, 10, CV_8UC1), s.geometry, {}), Error);
+  EXPECT_THROW(FuseDynamicMasks(cv::Mat::zeros(100, 120, CV_32FC1), s.geometry, {}), Error);
+  FusionOptions bad;
+  bad.dilation_px = -1;
+  EXPECT_THROW(bad.Check(), Error);
+  bad = {};
+  bad.min_static_evidence = -1;
+  EXPECT_THROW(FuseDynamicMasks(s.semantic, s.geometry, bad), Error);
+}
+
+TEST(FusionPolicy, NamesRoundTrip) {
+  for (const FusionPolicy p : {FusionPolicy::kUnion, FusionPolicy::kGeometryConfirms,
+                               FusionPolicy::kSemanticOnly, FusionPolicy::kGeometryOnly}) {
+    EXPECT_EQ(ParseFusionPolicy(ToString(p)), p);
+  }
+  EXPECT_THROW(ParseFusionPolicy("intersection"), Error);
+}
+
+}  // namespace
+}  // namespace dlslam::dynamic
