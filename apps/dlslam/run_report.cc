@@ -25,6 +25,7 @@ nlohmann::ordered_json DynamicReport(const RunStats& stats) {
   j["mode"] = ToString(d.mode);
   j["search"] = dynamic::ToString(d.search);
   if (d.mode == DynamicMode::kFull) j["fusion"] = dynamic::ToString(d.fusion);
+  j["keypoints_total"] = d.keypoints_total;
   j["keypoints_tested"] = d.keypoints_tested;
   j["keypoints_dynamic"] = d.keypoints_dynamic;
   j["keypoints_removed"] = d.keypoints_removed;

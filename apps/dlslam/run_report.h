@@ -22,7 +22,8 @@ struct RunEvaluation {
 // as `dlslam eval --json`.
 nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<RunEvaluation>& evaluation);
 
-// The "dynamic" object: mode, search, fusion (mode full), keypoints_tested,
+// The "dynamic" object: mode, search, fusion (mode full), keypoints_total,
+// keypoints_tested,
 // keypoints_dynamic, keypoints_removed, frames_with_geometry,
 // map_points_culled, geometry_ms / semantic_ms / semantic_wait_ms {median,
 // p95, max} (null when the stage never ran), and with ground-truth masks

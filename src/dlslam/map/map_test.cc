@@ -158,7 +158,9 @@ TEST(Map, ErasePointsUnlinksThemFromTheirKeyFrames) {
   EXPECT_EQ(map.NumMapPoints(), before - 10);
   EXPECT_TRUE(map.GetPoints(doomed).empty());
   for (KeyFrameId k : {kfs.k0, kfs.k1, kfs.k2}) {
-    for (MapPointId id : map.GetKeyFrame(k)->points) {
+    const std::optional<KeyFrameSnapshot> kf = map.GetKeyFrame(k);
+    ASSERT_TRUE(kf.has_value());
+    for (MapPointId id : kf->points) {
       EXPECT_EQ(std::count(doomed.begin(), doomed.end(), id), 0) << "keyframe " << k;
     }
   }

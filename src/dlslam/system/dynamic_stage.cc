@@ -52,6 +52,7 @@ DynamicStage::DynamicStage(const DynamicOptions& options, const CameraIntrinsics
 
 void DynamicStage::Process(Frame* frame, const cv::Mat& depth, const DynamicInputs& inputs) {
   DLSLAM_CHECK(frame != nullptr);
+  stats_.keypoints_total += static_cast<std::int64_t>(frame->size());
   for (std::size_t i = 0; i < frame->size(); ++i) frame->SetIgnored(i, false);
   if (options_.mode != DynamicMode::kOrb) {
     const cv::Mat prior = UsesSemanticPrior(options_.mode) ? SemanticPrior(inputs) : cv::Mat();

@@ -37,6 +37,7 @@ struct DynamicStats {
   DynamicMode mode = DynamicMode::kOrb;
   dynamic::SearchKind search = dynamic::SearchKind::kAntColony;
   dynamic::FusionPolicy fusion = dynamic::FusionPolicy::kUnion;  // as configured (used in mode full)
+  std::int64_t keypoints_total = 0;   // keypoints extracted, in every frame
   std::int64_t keypoints_tested = 0;   // projected reference points tested by geometry
   std::int64_t keypoints_dynamic = 0;  // of those, found moving
   std::int64_t keypoints_removed = 0;  // frame keypoints ignored (prior, geometry or both)

@@ -70,6 +70,7 @@ TEST_F(DynamicStageTest, SemanticModeRemovesThePriorAndCountsAgainstTruth) {
   EXPECT_NEAR(*s.precision(), 0.5, 0.1);
   EXPECT_DOUBLE_EQ(*s.precision(), static_cast<double>(s.true_positives) / removed);
   EXPECT_EQ(s.keypoints_tested, 0);  // no geometry in this mode
+  EXPECT_EQ(s.keypoints_total, static_cast<std::int64_t>(frame->size()));
   EXPECT_EQ(timings_.Summaries().at("semantic_wait").count, 1u);
 }
 
