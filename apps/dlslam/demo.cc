@@ -89,7 +89,7 @@ void RunDemo(const DemoArgs& args) {
   }
   spdlog::info(
       "demo results (orb: the ORB-SLAM3-style baseline; geometry: moving regions found by multi-view geometry; "
-      "recall: share of the keypoints on moving people that were removed){}",
+      "recall: share of the keypoints on moving people and objects that were removed){}",
       table);
   spdlog::info("outputs in {}: *_trajectory.txt (TUM format), *_report.json, *_ate.svg; sequences in {}/<preset>/",
                args.out.string(), args.out.string());

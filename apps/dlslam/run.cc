@@ -28,10 +28,12 @@ dynamic::FusionPolicy ParseFusion(std::string name) {
 
 void LogDynamicSummary(const RunStats& stats) {
   const DynamicStats& d = stats.dynamic;
-  if (d.mode == DynamicMode::kOrb && d.frames_with_truth == 0) return;
-  spdlog::info("dynamic (mode {}, search {}): {} points tested, {} dynamic, {} keypoints removed, {} map points culled",
-               ToString(d.mode), dynamic::ToString(d.search), d.keypoints_tested, d.keypoints_dynamic,
-               d.keypoints_removed, d.map_points_culled);
+  if (d.mode != DynamicMode::kOrb) {
+    spdlog::info("dynamic (mode {}, search {}): {} points tested, {} dynamic, {} keypoints removed, {} map points "
+                 "culled",
+                 ToString(d.mode), dynamic::ToString(d.search), d.keypoints_tested, d.keypoints_dynamic,
+                 d.keypoints_removed, d.map_points_culled);
+  }
   if (d.frames_with_truth > 0) {
     const auto show = [](const std::optional<double>& v) { return v ? fmt::format("{:.3f}", *v) : "-"; };
     spdlog::info("removed keypoints vs ground truth ({} frames): precision {}, recall {}", d.frames_with_truth,
