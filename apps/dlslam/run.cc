@@ -3,7 +3,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <fstream>
+#include <memory>
 
 #include "commands.h"
 #include "dlslam/io/file_util.h"
@@ -12,16 +14,61 @@
 #include "dlslam/util/check.h"
 #include "run_report.h"
 #include "run_sequence.h"
+#include "semantic_prior.h"
 
 namespace dlslam::app {
 
+namespace {
+
+// --fusion takes "geometry-confirms" as well as the library's "geometry_confirms".
+dynamic::FusionPolicy ParseFusion(std::string name) {
+  std::replace(name.begin(), name.end(), '-', '_');
+  return dynamic::ParseFusionPolicy(name);
+}
+
+void LogDynamicSummary(const RunStats& stats) {
+  const DynamicStats& d = stats.dynamic;
+  if (d.mode != DynamicMode::kOrb) {
+    spdlog::info("dynamic (mode {}, search {}): {} points tested, {} dynamic, {} keypoints removed, {} map points "
+                 "culled",
+                 ToString(d.mode), dynamic::ToString(d.search), d.keypoints_tested, d.keypoints_dynamic,
+                 d.keypoints_removed, d.map_points_culled);
+  }
+  if (d.frames_with_truth > 0) {
+    const auto show = [](const std::optional<double>& v) { return v ? fmt::format("{:.3f}", *v) : "-"; };
+    spdlog::info("removed keypoints vs ground truth ({} frames): precision {}, recall {}", d.frames_with_truth,
+                 show(d.precision()), show(d.recall()));
+  }
+}
+
+}  // namespace
+
 RunOutcome RunSequence(const RunArgs& args) {
-  const io::RgbdSequence sequence = io::RgbdSequence::Open(args.sequence, args.sequence_options);
-  const CameraIntrinsics& camera = sequence.camera();
   SystemOptions options;
   options.sequential = args.sequential;
   options.mapping.bundle.solver = ParseBundleSolver(args.bundle_solver);
+  options.dynamic.mode = ParseDynamicMode(args.mode);
+  options.dynamic.geometry.search = dynamic::ParseSearchKind(args.geometry_search);
+  options.dynamic.fusion.policy = ParseFusion(args.fusion);
+  const bool wants_prior = UsesSemanticPrior(options.dynamic.mode);
+  if (wants_prior && args.semantic_masks.empty()) {
+    throw Error(fmt::format("--mode {} needs a semantic prior: --semantic-masks gt (the sequence's ground-truth "
+                            "masks) or --semantic-masks DIR (PNG masks named like the colour images); the "
+                            "segmentation network is not wired into dlslam run yet",
+                            args.mode));
+  }
+  const io::RgbdSequence sequence = io::RgbdSequence::Open(args.sequence, args.sequence_options);
+  const CameraIntrinsics& camera = sequence.camera();
+  std::unique_ptr<SemanticPriorSource> prior_source;
+  if (wants_prior) {
+    prior_source = MakeSemanticPriorSource(args.semantic_masks, sequence);
+    spdlog::info("semantic prior: {}", prior_source->Describe());
+  } else if (!args.semantic_masks.empty()) {
+    spdlog::warn("--semantic-masks is not used in mode {}", args.mode);
+  }
   SlamSystem slam(camera, options);
+  StageTimings source_timings;  // the prior source's own time: stage "semantic"
+
   const std::size_t n = args.max_frames ? std::min(args.max_frames, sequence.size()) : sequence.size();
   TrackingState last_state = TrackingState::kNotInitialized;
   for (std::size_t i = 0; i < n; ++i) {
@@ -32,7 +79,17 @@ RunOutcome RunSequence(const RunArgs& args) {
       continue;
     }
     const io::RgbdFrame& f = *loaded.frame;
-    const TrackingResult r = slam.TrackRgbd(f.color, f.depth, f.timestamp);
+    DynamicInputs inputs;
+    if (!f.mask.empty()) inputs.moving_truth = MovingTruthFromLabels(f.mask);
+    if (prior_source) {
+      prior_source->Submit(i, f);
+      inputs.semantic_prior = [&] {
+        SemanticPrior prior = prior_source->Prior(i, f);
+        source_timings.Add("semantic", prior.compute_ms);
+        return prior.mask;
+      };
+    }
+    const TrackingResult r = slam.TrackRgbd(f.color, f.depth, f.timestamp, inputs);
     if (r.state != last_state) {
       spdlog::info("frame {} (t={:.6f}): tracking {} -> {}", i, f.timestamp, ToString(last_state), ToString(r.state));
       last_state = r.state;
@@ -45,7 +102,8 @@ RunOutcome RunSequence(const RunArgs& args) {
   spdlog::info("wrote {} poses to {}", trajectory.size(), args.out.string());
   if (!args.keyframes.empty()) io::WriteTumTrajectory(args.keyframes, slam.KeyFrameTrajectory());
 
-  const RunStats stats = slam.Stats();
+  RunStats stats = slam.Stats();
+  for (const auto& [stage, summary] : source_timings.Summaries()) stats.timing_ms[stage] = summary;
   std::optional<RunEvaluation> evaluation;
   if (sequence.ground_truth()) evaluation = EvaluateRun(*sequence.ground_truth(), trajectory);
   const auto& t = stats.timing_ms;
@@ -56,6 +114,7 @@ RunOutcome RunSequence(const RunArgs& args) {
                  t.at("frame_total").median, t.at("frame_total").p95, t.at("orb_extraction").median,
                  t.at("tracking").median);
   }
+  LogDynamicSummary(stats);
   if (evaluation) {
     spdlog::info("ATE RMSE {:.4f} m over {} poses", evaluation->ate.error.rmse, evaluation->ate.pairs);
     if (evaluation->rpe) {
@@ -78,9 +137,23 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("--out", args->out, "Camera trajectory output (TUM format)")->capture_default_str();
   cmd->add_option("--keyframes", args->keyframes, "Keyframe trajectory output (TUM format)");
   cmd->add_option("--report", args->report, "JSON report: frames, tracking, timing, ATE/RPE");
-  cmd->add_option("--mode", args->mode, "orb: the ORB-SLAM3-style baseline")
+  cmd->add_option("--mode", args->mode,
+                  "orb: the ORB-SLAM3-style baseline; semantic: drop keypoints on the semantic prior; "
+                  "geometry: multi-view geometry finds moving regions; full: both, fused")
       ->capture_default_str()
-      ->check(CLI::IsMember({"orb"}));
+      ->check(CLI::IsMember({"orb", "semantic", "geometry", "full"}));
+  cmd->add_option("--geometry-search", args->geometry_search,
+                  "Which projected points geometry tests: exhaustive (all) or ant (the ant colony search)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"exhaustive", "ant"}));
+  cmd->add_option("--fusion", args->fusion,
+                  "Mode full: union (prior or geometry), geometry-confirms (keep prior segments geometry "
+                  "shows still), semantic, geometry")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"union", "geometry-confirms", "geometry_confirms", "semantic", "geometry"}));
+  cmd->add_option("--semantic-masks", args->semantic_masks,
+                  "Semantic prior for modes semantic/full: gt (the sequence's ground-truth masks, class "
+                  "person) or a folder of PNG masks named like the colour images (non-zero = dynamic)");
   cmd->add_flag("--sequential", args->sequential,
                 "Run local mapping inline: deterministic, reproducible bit for bit");
   cmd->add_option("--bundle-solver", args->bundle_solver,

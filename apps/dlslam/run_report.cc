@@ -7,6 +7,44 @@
 
 namespace dlslam::app {
 
+namespace {
+
+nlohmann::ordered_json StageSummary(const RunStats& stats, const std::string& stage) {
+  const auto it = stats.timing_ms.find(stage);
+  if (it == stats.timing_ms.end()) return nullptr;
+  return {{"median", it->second.median}, {"p95", it->second.p95}, {"max", it->second.max}};
+}
+
+nlohmann::ordered_json OrNull(const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nullptr; }
+
+}  // namespace
+
+nlohmann::ordered_json DynamicReport(const RunStats& stats) {
+  const DynamicStats& d = stats.dynamic;
+  nlohmann::ordered_json j;
+  j["mode"] = ToString(d.mode);
+  j["search"] = dynamic::ToString(d.search);
+  if (d.mode == DynamicMode::kFull) j["fusion"] = dynamic::ToString(d.fusion);
+  j["keypoints_total"] = d.keypoints_total;
+  j["keypoints_tested"] = d.keypoints_tested;
+  j["keypoints_dynamic"] = d.keypoints_dynamic;
+  j["keypoints_removed"] = d.keypoints_removed;
+  j["frames_with_geometry"] = d.frames_with_geometry;
+  j["map_points_culled"] = d.map_points_culled;
+  j["geometry_ms"] = StageSummary(stats, "geometry");
+  j["semantic_ms"] = StageSummary(stats, "semantic");
+  j["semantic_wait_ms"] = StageSummary(stats, "semantic_wait");
+  if (d.frames_with_truth > 0) {
+    j["frames_with_truth"] = d.frames_with_truth;
+    j["precision"] = OrNull(d.precision());
+    j["recall"] = OrNull(d.recall());
+    j["true_positives"] = d.true_positives;
+    j["false_positives"] = d.false_positives;
+    j["false_negatives"] = d.false_negatives;
+  }
+  return j;
+}
+
 nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<RunEvaluation>& evaluation) {
   nlohmann::ordered_json j;
   j["frames"] = stats.frames;
@@ -26,6 +64,7 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
     timing[stage] = {{"median", s.median}, {"p95", s.p95}, {"max", s.max}, {"count", s.count}};
   }
   j["timing_ms"] = timing;
+  j["dynamic"] = DynamicReport(stats);
   if (evaluation) {
     j["ate"] = eval::ToJson(evaluation->ate);
     if (evaluation->rpe) j["rpe"] = eval::ToJson(*evaluation->rpe);

@@ -18,8 +18,18 @@ struct RunEvaluation {
 
 // Keys: frames, frames_tracked, frames_lost, frames_waiting, keyframes,
 // map_points, local_mapping {...}, timing_ms {stage: {median, p95, max,
-// count}}, and, with ground truth, ate / rpe as `dlslam eval --json`.
+// count}}, dynamic {...} (DynamicReport), and, with ground truth, ate / rpe
+// as `dlslam eval --json`.
 nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<RunEvaluation>& evaluation);
+
+// The "dynamic" object: mode, search, fusion (mode full), keypoints_total,
+// keypoints_tested,
+// keypoints_dynamic, keypoints_removed, frames_with_geometry,
+// map_points_culled, geometry_ms / semantic_ms / semantic_wait_ms {median,
+// p95, max} (null when the stage never ran), and with ground-truth masks
+// frames_with_truth, precision, recall (null when undefined), true_positives,
+// false_positives, false_negatives.
+nlohmann::ordered_json DynamicReport(const RunStats& stats);
 
 // Evaluates against ground truth when there is enough overlap; nullopt (and a
 // warning) otherwise.

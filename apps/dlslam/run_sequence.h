@@ -15,7 +15,10 @@ struct RunArgs {
   std::filesystem::path out = "trajectory.txt";
   std::filesystem::path keyframes;
   std::filesystem::path report;
-  std::string mode = "orb";
+  std::string mode = "orb";                // orb, semantic, geometry, full
+  std::string geometry_search = "ant";     // exhaustive, ant
+  std::string fusion = "union";            // union, geometry-confirms, semantic, geometry
+  std::string semantic_masks;              // "gt", a folder, or "" (none)
   bool sequential = false;
   std::string bundle_solver = "lm";  // local bundle adjustment: "lm" or "ceres"
   std::size_t max_frames = 0;

@@ -96,6 +96,20 @@ cv::Mat ReadDepthImage(const ImageSource& source, double depth_factor, int width
   return metres;
 }
 
+cv::Mat ReadMaskImage(const ImageSource& source, int width, int height) {
+  const cv::Mat mask = Decode(source, "mask", cv::IMREAD_UNCHANGED);
+  if (mask.channels() != 1) {
+    Fail(source, "mask", fmt::format("{} channels, expected a single-channel 8-bit label image", mask.channels()));
+  }
+  if (mask.depth() != CV_8U) {
+    Fail(source, "mask",
+         fmt::format("{}-bit image, expected an 8-bit label image (a depth image listed as mask?)",
+                     mask.elemSize1() * 8));
+  }
+  CheckSize(source, "mask", mask, width, height);
+  return mask;
+}
+
 cv::Size ReadImageSize(const ImageSource& source) {
   return Decode(source, "colour", cv::IMREAD_UNCHANGED).size();
 }

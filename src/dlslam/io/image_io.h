@@ -29,6 +29,12 @@ cv::Mat ReadColorImage(const ImageSource& source, int width, int height);
 // 8-bit or multi-channel image, or a size other than width x height.
 cv::Mat ReadDepthImage(const ImageSource& source, double depth_factor, int width, int height);
 
+// Mask image as CV_8UC1 (a label per pixel, e.g. `dlslam synth`'s ground
+// truth or a segmentation): an 8-bit single-channel PNG. Throws InputError
+// for the file errors above, a 16-bit or multi-channel image, or a size other
+// than width x height.
+cv::Mat ReadMaskImage(const ImageSource& source, int width, int height);
+
 // The size of an image file (decodes it). Same file errors as above.
 cv::Size ReadImageSize(const ImageSource& source);
 

@@ -54,7 +54,7 @@ RgbdSequence RgbdSequence::Open(const std::filesystem::path& folder,
   hints.depth_list = folder / "depth.txt";
   if (!options.associations_file.empty()) {
     for (AssociatedImages& pair : ReadAssociationFile(options.associations_file)) {
-      seq.frames_.push_back({std::move(pair.rgb), std::move(pair.depth)});
+      seq.frames_.push_back({std::move(pair.rgb), std::move(pair.depth), std::nullopt});
     }
     // Only the comments matter here; the lines are not checked.
     if (std::filesystem::exists(hints.depth_list)) {
@@ -70,7 +70,7 @@ RgbdSequence RgbdSequence::Open(const std::filesystem::path& folder,
     for (const ListedImage& image : depth.images) depth_times.push_back(image.timestamp);
     for (const IndexPair& p :
          AssociateTimestamps(rgb_times, depth_times, 0.0, options.max_association_diff)) {
-      seq.frames_.push_back({rgb.images[p.first], depth.images[p.second]});
+      seq.frames_.push_back({rgb.images[p.first], depth.images[p.second], std::nullopt});
     }
     seq.rgb_list_ = std::move(rgb.images);
     seq.depth_list_ = std::move(depth.images);
@@ -88,17 +88,36 @@ RgbdSequence RgbdSequence::Open(const std::filesystem::path& folder,
   seq.depth_factor_source_ = choice.depth_factor_source;
   seq.fps_ = choice.fps;
 
+  if (const auto masks = folder / "mask.txt"; std::filesystem::exists(masks)) {
+    seq.AttachMasks(ReadImageList(masks));
+  }
   if (const auto gt = folder / "groundtruth.txt"; std::filesystem::exists(gt)) {
     seq.ground_truth_ = ReadTumTrajectory(gt);
   }
   if (const auto acc = folder / "accelerometer.txt"; std::filesystem::exists(acc)) {
     seq.accelerometer_ = ReadAccelerometer(acc);
   }
-  spdlog::info("sequence {}: {} frames; camera {} {}x{} from {}; depth factor {} from {}",
+  spdlog::info("sequence {}: {} frames; camera {} {}x{} from {}; depth factor {} from {}{}",
                folder.string(), seq.frames_.size(), seq.camera_.name, seq.camera_.width,
                seq.camera_.height, seq.camera_source_, seq.camera_.depth_factor,
-               seq.depth_factor_source_);
+               seq.depth_factor_source_,
+               seq.mask_list_.empty() ? "" : fmt::format("; masks for {} frames", seq.frames_with_mask_));
   return seq;
+}
+
+void RgbdSequence::AttachMasks(ImageList masks) {
+  std::vector<double> frame_times, mask_times;
+  for (const RgbdFrameInfo& f : frames_) frame_times.push_back(f.timestamp());
+  for (const ListedImage& image : masks.images) mask_times.push_back(image.timestamp);
+  for (const IndexPair& p : AssociateTimestamps(frame_times, mask_times, 0.0, options_.max_association_diff)) {
+    frames_[p.first].mask = masks.images[p.second];
+    ++frames_with_mask_;
+  }
+  if (!masks.images.empty() && frames_with_mask_ == 0) {
+    spdlog::warn("{}: no mask lies within {} s of a frame; masks ignored", masks.path.string(),
+                 options_.max_association_diff);
+  }
+  mask_list_ = std::move(masks.images);
 }
 
 RgbdFrame RgbdSequence::LoadFrame(std::size_t i) const {
@@ -111,6 +130,7 @@ RgbdFrame RgbdSequence::LoadFrame(std::size_t i) const {
   frame.color = ReadColorImage(SourceOf(folder_, info.rgb), camera_.width, camera_.height);
   frame.depth = ReadDepthImage(SourceOf(folder_, info.depth), camera_.depth_factor, camera_.width,
                                camera_.height);
+  if (info.mask) frame.mask = ReadMaskImage(SourceOf(folder_, *info.mask), camera_.width, camera_.height);
   return frame;
 }
 

@@ -5,6 +5,9 @@
 //   rgb/, depth/              8-bit colour (PNG/JPEG), 16-bit depth PNGs
 //   groundtruth.txt           optional, TUM trajectory (world_from_cam)
 //   accelerometer.txt         optional, "timestamp ax ay az"
+//   mask.txt, mask/           optional, per-pixel 8-bit labels ("timestamp path";
+//                             `dlslam synth`'s ground truth), associated to the
+//                             frames by time like depth
 //   camera.yaml / camera-intrinsics.txt   optional camera (camera_source.h)
 // Opening reads the lists and resolves the camera; images are read per frame,
 // so a bad image fails only its own frame (TryLoadFrame).
@@ -45,6 +48,7 @@ struct RgbdSequenceOptions {
 struct RgbdFrameInfo {
   ListedImage rgb;
   ListedImage depth;
+  std::optional<ListedImage> mask;  // from mask.txt, when it lists one near this time
   double timestamp() const { return rgb.timestamp; }  // the frame's time [s]
 };
 
@@ -54,6 +58,7 @@ struct RgbdFrame {
   double depth_timestamp = 0.0;  // [s]
   cv::Mat color;                 // CV_8UC3 BGR, camera width x height
   cv::Mat depth;                 // CV_32FC1 [m], 0 = no measurement
+  cv::Mat mask;                  // CV_8UC1 labels as stored; empty when the frame has none
 };
 
 // TryLoadFrame's answer: a frame, or the InputError text of why not.
@@ -83,13 +88,18 @@ class RgbdSequence {
   // rgb.txt / depth.txt as read; empty when an association file was given.
   const std::vector<ListedImage>& rgb_list() const { return rgb_list_; }
   const std::vector<ListedImage>& depth_list() const { return depth_list_; }
+  // mask.txt as read (empty without one), and whether any frame got a mask.
+  const std::vector<ListedImage>& mask_list() const { return mask_list_; }
+  bool has_masks() const { return frames_with_mask_ > 0; }
+  std::size_t frames_with_mask() const { return frames_with_mask_; }
   // groundtruth.txt / accelerometer.txt if the folder has them.
   const std::optional<Trajectory>& ground_truth() const { return ground_truth_; }
   const std::vector<AccelerometerSample>& accelerometer() const { return accelerometer_; }
 
-  // Reads frame i (< size(); else dlslam::Error). Throws InputError naming the
-  // image and the list line for a missing, empty, corrupt, 8-bit depth or
-  // wrongly sized image.
+  // Reads frame i (< size(); else dlslam::Error), with its mask if it has
+  // one. Throws InputError naming the image and the list line for a missing,
+  // empty, corrupt, 8-bit depth, 16-bit or multi-channel mask or wrongly
+  // sized image.
   RgbdFrame LoadFrame(std::size_t i) const;
   // As LoadFrame, but a bad image is returned as an error instead of thrown,
   // so that a run can mark the frame lost and go on.
@@ -97,6 +107,8 @@ class RgbdSequence {
 
  private:
   RgbdSequence() = default;
+  // Associates mask.txt's images to the frames by time.
+  void AttachMasks(ImageList masks);
 
   std::filesystem::path folder_;
   RgbdSequenceOptions options_;
@@ -107,6 +119,8 @@ class RgbdSequence {
   std::vector<RgbdFrameInfo> frames_;
   std::vector<ListedImage> rgb_list_;
   std::vector<ListedImage> depth_list_;
+  std::vector<ListedImage> mask_list_;
+  std::size_t frames_with_mask_ = 0;
   std::optional<Trajectory> ground_truth_;
   std::vector<AccelerometerSample> accelerometer_;
 };

@@ -77,6 +77,30 @@ TEST(SequenceBadInput, MissingImageInTheMiddleFailsOnlyThatFrame) {
   EXPECT_TRUE(seq.TryLoadFrame(2).ok());
 }
 
+TEST(SequenceBadInput, MalformedMaskList) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(2);
+  folder.WriteText("mask.txt", "1000.0 mask/0.png\n1000.033333\n");
+  EXPECT_THAT(OpenError(folder.dir()), HasSubstr("mask.txt:2: expected 'timestamp path', got 1 fields"));
+  folder.WriteText("mask.txt", "1000.0 mask/0.png\n999.0 mask/1.png\n");
+  EXPECT_THAT(OpenError(folder.dir()), HasSubstr("mask.txt:2: image timestamp 999.000000 is not larger"));
+}
+
+TEST(SequenceBadInput, BadMaskImagesFailTheirFrame) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(4);
+  folder.WriteMasks(4);
+  std::filesystem::remove(folder.dir() / "mask/0.png");
+  EXPECT_THAT(FrameError(folder, 0),
+              AllOf(HasSubstr("mask.txt:3: mask image"), HasSubstr("mask/0.png"), HasSubstr("file not found")));
+  cv::imwrite((folder.dir() / "mask/1.png").string(), cv::Mat(48, 64, CV_16UC1, cv::Scalar(300)));
+  EXPECT_THAT(FrameError(folder, 1), AllOf(HasSubstr("mask.txt:4: mask image"), HasSubstr("16-bit image")));
+  cv::imwrite((folder.dir() / "mask/2.png").string(), cv::Mat(48, 64, CV_8UC3, cv::Scalar(1, 2, 3)));
+  EXPECT_THAT(FrameError(folder, 2), HasSubstr("3 channels, expected a single-channel"));
+  cv::imwrite((folder.dir() / "mask/3.png").string(), cv::Mat(24, 32, CV_8UC1, cv::Scalar(0)));
+  EXPECT_THAT(FrameError(folder, 3), HasSubstr("size 32x24 differs from the camera's 64x48"));
+}
+
 TEST(SequenceBadInput, EightBitDepth) {
   SequenceFolder folder;
   folder.WriteValidSequence(2);

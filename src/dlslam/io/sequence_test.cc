@@ -60,6 +60,36 @@ TEST(RgbdSequence, ReadsAConstructedSequence) {
   EXPECT_THROW(seq.LoadFrame(4), Error);
 }
 
+TEST(RgbdSequence, WithoutMaskListFramesHaveNoMask) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(2);
+  const RgbdSequence seq = RgbdSequence::Open(folder.dir());
+  EXPECT_FALSE(seq.has_masks());
+  EXPECT_TRUE(seq.LoadFrame(0).mask.empty());
+}
+
+TEST(RgbdSequence, LoadsMasksAssociatedByTime) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(4);
+  folder.WriteMasks(4, {64, 48}, 129);
+  // Frame 2's mask is listed 30 ms late: beyond the 20 ms association limit.
+  folder.WriteText("mask.txt",
+                   "# masks\n1000.000000 mask/0.png\n1000.043333 mask/1.png\n1000.096667 mask/2.png\n"
+                   "1000.100000 mask/3.png\n");
+  const RgbdSequence seq = RgbdSequence::Open(folder.dir());
+  EXPECT_TRUE(seq.has_masks());
+  EXPECT_EQ(seq.frames_with_mask(), 3u);
+  EXPECT_EQ(seq.mask_list().size(), 4u);
+  ASSERT_TRUE(seq.frames()[1].mask.has_value());
+  EXPECT_EQ(seq.frames()[1].mask->path, "mask/1.png");
+  EXPECT_FALSE(seq.frames()[2].mask.has_value());
+  const RgbdFrame frame = seq.LoadFrame(1);
+  ASSERT_EQ(frame.mask.type(), CV_8UC1);
+  EXPECT_EQ(frame.mask.size(), cv::Size(64, 48));
+  EXPECT_EQ(frame.mask.at<uchar>(5, 7), 129);
+  EXPECT_TRUE(seq.LoadFrame(2).mask.empty());
+}
+
 TEST(RgbdSequence, UnmatchedImagesAreLeftOutAndCounted) {
   SequenceFolder folder;
   folder.WriteValidSequence(3);

@@ -44,6 +44,18 @@ class SequenceFolder {
     cv::imwrite((dir_ / relative).string(), depth);
   }
 
+  // mask/i.png (8-bit, every pixel `value`) and mask.txt for frames
+  // [0, n) of WriteValidSequence, at the colour times.
+  void WriteMasks(int n, cv::Size size = {64, 48}, int value = 129) const {
+    std::filesystem::create_directories(dir_ / "mask");
+    std::string list = "# ground-truth masks\n# timestamp filename\n";
+    for (int i = 0; i < n; ++i) {
+      list += fmt::format("{:.6f} mask/{}.png\n", 1000.0 + i / 30.0, i);
+      cv::imwrite((dir_ / fmt::format("mask/{}.png", i)).string(), cv::Mat(size, CV_8UC1, cv::Scalar(value)));
+    }
+    WriteText("mask.txt", list);
+  }
+
   // n frames at 30 Hz: rgb/i.png, depth/i.png (raw 5000 + 10 i), depth 2 ms
   // after colour, camera.yaml for `size`.
   void WriteValidSequence(int n, cv::Size size = {64, 48}) const {

@@ -220,6 +220,39 @@ std::optional<KeyFrameSnapshot> Map::GetKeyFrame(KeyFrameId keyframe) const {
   return KeyFrameSnapshot{kf.id, kf.frame, kf.cam_from_world, kf.points};
 }
 
+std::vector<KeyFrameSnapshot> Map::GetCovisibleKeyFrames(KeyFrameId keyframe, std::size_t max_keyframes) const {
+  std::lock_guard lock(mutex_);
+  std::vector<KeyFrameSnapshot> out;
+  if (keyframes_.empty() || max_keyframes == 0) return out;
+  auto it = keyframes_.find(keyframe);
+  if (it == keyframes_.end()) {
+    it = std::max_element(keyframes_.begin(), keyframes_.end(),
+                          [](const auto& a, const auto& b) { return a.first < b.first; });
+  }
+  const auto copy = [&](const KeyFrame& kf) { out.push_back({kf.id, kf.frame, kf.cam_from_world, kf.points}); };
+  copy(it->second);
+  // Most shared points first; among equals the newer keyframe.
+  std::vector<std::pair<int, KeyFrameId>> neighbours;
+  for (const auto& [other, shared] : it->second.covisibility) neighbours.emplace_back(shared, other);
+  std::sort(neighbours.rbegin(), neighbours.rend());
+  for (const auto& [shared, other] : neighbours) {
+    if (out.size() >= max_keyframes) break;
+    if (const auto n = keyframes_.find(other); n != keyframes_.end()) copy(n->second);
+  }
+  return out;
+}
+
+int Map::ErasePoints(const std::vector<MapPointId>& ids) {
+  std::lock_guard lock(mutex_);
+  int erased = 0;
+  for (MapPointId id : ids) {
+    if (!points_.count(id)) continue;
+    ErasePointLocked(id);
+    ++erased;
+  }
+  return erased;
+}
+
 std::size_t Map::NumKeyFrames() const {
   std::lock_guard lock(mutex_);
   return keyframes_.size();

@@ -77,10 +77,19 @@ class Map {
   int TrackedPoints(KeyFrameId keyframe, int min_observations) const;
   std::vector<KeyFramePose> KeyFramePoses() const;  // sorted by id
   std::optional<KeyFrameSnapshot> GetKeyFrame(KeyFrameId keyframe) const;
+  // Copies of `keyframe` and its covisible neighbours that share the most
+  // points with it, best first, at most `max_keyframes` in all: the views
+  // with most overlap with a frame tracked against `keyframe`. A culled or
+  // unknown `keyframe` is replaced by the newest keyframe (empty: no map).
+  std::vector<KeyFrameSnapshot> GetCovisibleKeyFrames(KeyFrameId keyframe, std::size_t max_keyframes) const;
   std::size_t NumKeyFrames() const;
   std::size_t NumMapPoints() const;
   // Pose of a keyframe, also of one that was culled (through its parent).
   std::optional<SE3d> ResolveCamFromWorld(KeyFrameId keyframe) const;
+
+  // Removes the given points (ones already gone are skipped), e.g. points
+  // that turned out to lie on a moving object. Returns how many were removed.
+  int ErasePoints(const std::vector<MapPointId>& ids);
 
   // --- Maintenance by local mapping (map_maintenance.cc) ---
   // `keyframe` and its covisible neighbours, free; every other keyframe that

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <vector>
 
@@ -106,6 +107,78 @@ TEST(Map, CullingSparesKeyFramesNotYetLocallyMapped) {
   std::vector<KeyFrameId> left;
   for (const KeyFramePose& k : map.KeyFramePoses()) left.push_back(k.id);
   EXPECT_EQ(left, (std::vector<KeyFrameId>{0, 2, 3, 4}));
+}
+
+// Three keyframes along a line: k0 and k2 share points with k1, k0 more
+// than k2 (k2 looks further along). Returns their ids and the points.
+struct ThreeKeyFrames {
+  KeyFrameId k0, k1, k2;
+  std::vector<MapPointId> points;
+};
+
+ThreeKeyFrames MakeThreeKeyFrames(Map& map, const testing::LandmarkScene& scene) {
+  ThreeKeyFrames out;
+  std::map<int, MapPointId> point_of_landmark;
+  const double x[3] = {0.0, -0.1, -0.3};
+  const double yaw[3] = {0.0, 0.05, 0.4};
+  KeyFrameId ids[3];
+  for (int k = 0; k < 3; ++k) {
+    std::vector<int> landmarks;
+    auto frame = scene.MakeFrame(Pose(x[k], yaw[k]), k * 0.1, 10 + k, 0, 0, &landmarks);
+    ids[k] = map.AddKeyFrame(frame, Pose(x[k], yaw[k]));
+    for (std::size_t i = 0; i < landmarks.size(); ++i) {
+      const auto it = point_of_landmark.find(landmarks[i]);
+      if (it != point_of_landmark.end()) {
+        map.AddObservation(it->second, ids[k], static_cast<int>(i));
+      } else {
+        point_of_landmark[landmarks[i]] = map.AddMapPoint(scene.points[landmarks[i]], ids[k], static_cast<int>(i));
+      }
+    }
+    map.UpdateConnections(ids[k]);
+  }
+  for (const auto& [lm, id] : point_of_landmark) out.points.push_back(id);
+  out.k0 = ids[0];
+  out.k1 = ids[1];
+  out.k2 = ids[2];
+  return out;
+}
+
+TEST(Map, CovisibleKeyFramesBestFirst) {
+  const auto scene = testing::LandmarkScene::Room(3000, 2);
+  Map map;
+  EXPECT_TRUE(map.GetCovisibleKeyFrames(0, 5).empty());
+  const ThreeKeyFrames kfs = MakeThreeKeyFrames(map, scene);
+  const auto views = map.GetCovisibleKeyFrames(kfs.k1, 5);
+  ASSERT_EQ(views.size(), 3u);
+  EXPECT_EQ(views[0].id, kfs.k1);
+  EXPECT_EQ(views[1].id, kfs.k0);  // the closer view shares more points
+  EXPECT_EQ(views[2].id, kfs.k2);
+  EXPECT_EQ(views[0].points.size(), views[0].frame->size());
+  EXPECT_TRUE(views[1].cam_from_world.translation().isApprox(Pose(0, 0).translation()));
+  EXPECT_EQ(map.GetCovisibleKeyFrames(kfs.k1, 2).size(), 2u);
+  // An unknown keyframe: start from the newest.
+  EXPECT_EQ(map.GetCovisibleKeyFrames(12345, 1).front().id, kfs.k2);
+}
+
+TEST(Map, ErasePointsUnlinksThemFromTheirKeyFrames) {
+  const auto scene = testing::LandmarkScene::Room(3000, 3);
+  Map map;
+  const ThreeKeyFrames kfs = MakeThreeKeyFrames(map, scene);
+  const std::size_t before = map.NumMapPoints();
+  const std::vector<MapPointId> doomed(kfs.points.begin(), kfs.points.begin() + 10);
+  std::vector<MapPointId> with_unknown = doomed;
+  with_unknown.push_back(kNoId - 1);
+  EXPECT_EQ(map.ErasePoints(with_unknown), 10);
+  EXPECT_EQ(map.ErasePoints(doomed), 0);  // already gone
+  EXPECT_EQ(map.NumMapPoints(), before - 10);
+  EXPECT_TRUE(map.GetPoints(doomed).empty());
+  for (KeyFrameId k : {kfs.k0, kfs.k1, kfs.k2}) {
+    const std::optional<KeyFrameSnapshot> kf = map.GetKeyFrame(k);
+    ASSERT_TRUE(kf.has_value());
+    for (MapPointId id : kf->points) {
+      EXPECT_EQ(std::count(doomed.begin(), doomed.end(), id), 0) << "keyframe " << k;
+    }
+  }
 }
 
 TEST(Map, PredictOctave) {

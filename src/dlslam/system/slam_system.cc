@@ -8,6 +8,7 @@ void SystemOptions::Check() const {
   orb.Check();
   tracker.Check();
   mapping.Check();
+  dynamic.Check();
 }
 
 SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& options)
@@ -16,6 +17,7 @@ SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& opti
       extractor_(options.orb),
       pyramid_{options.orb.n_levels, options.orb.scale_factor},
       tracker_(options.tracker, &map_),
+      dynamic_(options.dynamic, camera, &map_, &tracker_, &timings_),
       mapper_(options.mapping, &map_, &timings_) {
   camera_.Check();
   options_.Check();
@@ -25,7 +27,14 @@ SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& opti
 SlamSystem::~SlamSystem() { Shutdown(); }
 
 TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth, double timestamp,
-                                     const cv::Mat& dynamic_mask) {
+                                     const cv::Mat& semantic_prior) {
+  DynamicInputs inputs;
+  if (!semantic_prior.empty()) inputs.semantic_prior = [&semantic_prior] { return semantic_prior; };
+  return TrackRgbd(colour, depth, timestamp, inputs);
+}
+
+TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth, double timestamp,
+                                     const DynamicInputs& dynamic) {
   DLSLAM_CHECK(!shut_down_, "the system was shut down");
   DLSLAM_CHECK(!colour.empty(), "empty colour image at t={:.6f}", timestamp);
   DLSLAM_CHECK(colour.cols == camera_.width && colour.rows == camera_.height,
@@ -34,10 +43,11 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   ++counts_.frames;
   Stopwatch total;
   Stopwatch watch;
-  const features::OrbFeatures features = extractor_.Extract(colour, dynamic_mask);
+  const features::OrbFeatures features = extractor_.Extract(colour);
   timings_.Add("orb_extraction", watch.ElapsedMs());
   auto frame = std::make_shared<Frame>(
       Frame::Create(timestamp, features.keypoints, features.descriptors, depth, camera_, pyramid_));
+  dynamic_.Process(frame.get(), depth, dynamic);
   watch = Stopwatch();
   const TrackingResult result = tracker_.Track(frame);
   timings_.Add("tracking", watch.ElapsedMs());
@@ -94,6 +104,7 @@ RunStats SlamSystem::Stats() const {
   s.keyframes = map_.NumKeyFrames();
   s.map_points = map_.NumMapPoints();
   s.mapping = mapper_.stats();
+  s.dynamic = dynamic_.stats();
   s.timing_ms = timings_.Summaries();
   return s;
 }

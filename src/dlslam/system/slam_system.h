@@ -4,8 +4,8 @@
 // and the local-mapping thread (or runs mapping inline in sequential mode,
 // which is reproducible bit for bit).
 //
-//   SlamSystem slam(camera, options);
-//   for (...) slam.TrackRgbd(bgr, depth_m, t, dynamic_mask);
+//   SlamSystem slam(camera, options);          // options.dynamic.mode: orb, semantic, geometry, full
+//   for (...) slam.TrackRgbd(bgr, depth_m, t, semantic_prior);
 //   slam.Shutdown();
 //   io::WriteTumTrajectory("traj.txt", slam.CameraTrajectory());
 
@@ -18,6 +18,7 @@
 #include "dlslam/features/orb_extractor.h"
 #include "dlslam/map/map.h"
 #include "dlslam/mapping/local_mapper.h"
+#include "dlslam/system/dynamic_stage.h"
 #include "dlslam/tracking/tracker.h"
 #include "dlslam/util/timing.h"
 
@@ -27,6 +28,7 @@ struct SystemOptions {
   features::OrbOptions orb;
   TrackerOptions tracker;
   LocalMapperOptions mapping;
+  DynamicOptions dynamic;
   // Run local mapping inline after each keyframe instead of in its thread.
   bool sequential = false;
 
@@ -41,6 +43,7 @@ struct RunStats {
   std::size_t keyframes = 0;
   std::size_t map_points = 0;
   LocalMappingStats mapping;
+  DynamicStats dynamic;
   std::map<std::string, TimingSummary> timing_ms;  // per stage
 };
 
@@ -52,10 +55,17 @@ class SlamSystem {
   SlamSystem& operator=(const SlamSystem&) = delete;
 
   // One frame: colour (CV_8UC3 BGR or CV_8UC1), depth (CV_32FC1 metres,
-  // registered to colour, 0 = none; may be empty), and optionally a dynamic
-  // mask (CV_8UC1, non-zero = dynamic) whose pixels give no keypoints.
+  // registered to colour, 0 = none; may be empty), and what the dynamic
+  // stage may use (dynamic_stage.h): the semantic prior, deferred so that a
+  // segmentation thread can work while ORB features are extracted, and
+  // ground truth for statistics. Keypoints are extracted on the whole image;
+  // the mode decides which are then ignored by tracking and mapping.
   TrackingResult TrackRgbd(const cv::Mat& colour, const cv::Mat& depth, double timestamp,
-                           const cv::Mat& dynamic_mask = cv::Mat());
+                           const DynamicInputs& dynamic);
+  // The same with the semantic prior at hand (CV_8UC1, non-zero = a class
+  // that may move; empty = none). Mode orb ignores it.
+  TrackingResult TrackRgbd(const cv::Mat& colour, const cv::Mat& depth, double timestamp,
+                           const cv::Mat& semantic_prior = cv::Mat());
   // A frame that could not be read counts as lost.
   void MarkLost(double timestamp);
   // Finishes local mapping. Called by the destructor too.
@@ -81,6 +91,7 @@ class SlamSystem {
   StageTimings timings_;  // before mapper_: the mapping thread writes to it
   Map map_;
   Tracker tracker_;
+  DynamicStage dynamic_;
   LocalMapper mapper_;
   std::vector<FrameRecord> tracked_;
   RunStats counts_;

@@ -112,8 +112,18 @@ bool Tracker::Initialize(const std::shared_ptr<const Frame>& frame, TrackingResu
   return true;
 }
 
-bool Tracker::TrackWithMotionModel(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches) {
-  *pose = *velocity_ * *last_pose_;
+std::optional<SE3d> Tracker::EstimatePose(const Frame& frame) const {
+  if (state_ != TrackingState::kOk || !last_pose_) return std::nullopt;
+  // Right after a keyframe or a relocation there is no velocity: assume none.
+  const SE3d guess = velocity_ ? *velocity_ * *last_pose_ : *last_pose_;
+  SE3d pose;
+  std::vector<MapPointId> matches;
+  if (TrackWithMotionModel(frame, &pose, &matches)) return pose;
+  return guess;
+}
+
+bool Tracker::TrackWithMotionModel(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches) const {
+  *pose = velocity_ ? *velocity_ * *last_pose_ : *last_pose_;
   const std::vector<MapPointView> points = map_->GetPoints(MatchedIds(last_matches_));
   ProjectionMatchOptions search;
   search.radius = options_.motion_search_radius;

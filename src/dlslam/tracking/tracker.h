@@ -73,12 +73,21 @@ class Tracker {
   // Tracks one frame. The frame's ignored keypoints are never matched.
   TrackingResult Track(const std::shared_ptr<const Frame>& frame);
 
+  // A first pose for the next frame, without changing the tracker: the
+  // constant-velocity guess refined on the frame's non-ignored keypoints
+  // (matched to the last frame's points), or the guess itself when that
+  // refinement fails. nullopt unless the last frame was tracked. The dynamic
+  // stage uses it to test keypoints before the frame is tracked.
+  std::optional<SE3d> EstimatePose(const Frame& frame) const;
+
   TrackingState state() const { return state_; }
+  // The keyframe the last tracked frame shares most points with.
+  KeyFrameId reference_keyframe() const { return reference_keyframe_; }
 
  private:
   bool Initialize(const std::shared_ptr<const Frame>& frame, TrackingResult* result);
   // Pose from the last frame's points with the constant-velocity guess.
-  bool TrackWithMotionModel(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches);
+  bool TrackWithMotionModel(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches) const;
   // Pose from descriptor matches against the reference keyframe.
   bool TrackReferenceKeyFrame(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches);
   // Adds local-map matches and re-optimises; returns the inlier count.

@@ -72,5 +72,48 @@ TEST(Tracker, ReportsLostAndRecoversThroughTheReferenceKeyFrame) {
   EXPECT_LT((r.cam_from_world->Inverse().translation() - truth_rel.Inverse().translation()).norm(), 0.01);
 }
 
+TEST(Tracker, EstimatePoseIsAccurateAndLeavesTheTrackerAsItWas) {
+  const auto scene = testing::LandmarkScene::Room(6000, 6);
+  Map map_a, map_b;
+  Tracker a(TrackerOptions(), &map_a);
+  Tracker b(TrackerOptions(), &map_b);
+  EXPECT_FALSE(a.EstimatePose(*scene.MakeFrame(CamFromWorld(0), 0.0, 1)).has_value());  // no map yet
+  for (int i = 0; i < 40; ++i) {
+    const auto frame = scene.MakeFrame(CamFromWorld(i), i / 30.0, 200 + i);
+    std::optional<SE3d> estimate;
+    if (i > 0) estimate = a.EstimatePose(*frame);  // only `a` is asked first
+    const TrackingResult ra = a.Track(frame);
+    const TrackingResult rb = b.Track(frame);
+    ASSERT_EQ(ra.state, TrackingState::kOk);
+    // Asking changed nothing: both trackers agree exactly.
+    EXPECT_EQ(ra.cam_from_world->translation(), rb.cam_from_world->translation()) << "frame " << i;
+    EXPECT_EQ(ra.new_keyframe, rb.new_keyframe);
+    if (i == 0) continue;
+    ASSERT_TRUE(estimate.has_value());
+    // Refined on the frame's keypoints: as close as tracking itself, far
+    // closer than the 1-2 cm the camera moves per frame.
+    EXPECT_LT((estimate->Inverse().translation() - ra.cam_from_world->Inverse().translation()).norm(), 0.002)
+        << "frame " << i;
+  }
+  EXPECT_EQ(map_a.NumMapPoints(), map_b.NumMapPoints());
+}
+
+TEST(Tracker, EstimatePoseFallsBackToTheMotionGuess) {
+  const auto scene = testing::LandmarkScene::Room(6000, 7);
+  Map map;
+  Tracker tracker(TrackerOptions(), &map);
+  for (int i = 0; i < 5; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+  // Nothing to refine on: the constant-velocity guess, between the last pose and the true next one.
+  const Frame black = Frame::Create(0.2, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
+  const std::optional<SE3d> guess = tracker.EstimatePose(black);
+  ASSERT_TRUE(guess.has_value());
+  const SE3d truth_rel = CamFromWorld(5) * CamFromWorld(0).Inverse();
+  EXPECT_LT((guess->Inverse().translation() - truth_rel.Inverse().translation()).norm(), 0.005);
+  EXPECT_EQ(tracker.state(), TrackingState::kOk);
+  // After losing track there is no estimate.
+  EXPECT_EQ(tracker.Track(std::make_shared<Frame>(black)).state, TrackingState::kLost);
+  EXPECT_FALSE(tracker.EstimatePose(black).has_value());
+}
+
 }  // namespace
 }  // namespace dlslam

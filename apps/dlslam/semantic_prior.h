@@ -1,0 +1,53 @@
+#pragma once
+// Where `dlslam run` gets each frame's semantic a-priori mask: the pixels of
+// classes that may move (people), as a segmentation network gives them. One
+// small interface, so that a network running in its own thread plugs in
+// beside the ground-truth and folder sources:
+//   source->Submit(i, frame);                 // before TrackRgbd: start work
+//   slam.TrackRgbd(..., {[&] { return source->Prior(i, frame).mask; }});
+// TrackRgbd calls the deferred Prior after ORB extraction, so a network
+// overlaps with feature extraction and tracking waits only for the rest.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "dlslam/io/sequence.h"
+
+namespace dlslam::app {
+
+struct SemanticPrior {
+  cv::Mat mask;             // CV_8UC1, non-zero = a-priori dynamic; empty = none for this frame
+  double compute_ms = 0.0;  // time the source spent making it (inference, or reading)
+};
+
+class SemanticPriorSource {
+ public:
+  virtual ~SemanticPriorSource() = default;
+  // Frame `index` is about to be tracked; a source with a worker starts on it
+  // here. Default: nothing (the work happens in Prior).
+  virtual void Submit(std::size_t /*index*/, const io::RgbdFrame& /*frame*/) {}
+  // The prior of the frame last submitted; may block until it is ready.
+  // Throws InputError when its input is missing or bad.
+  virtual SemanticPrior Prior(std::size_t index, const io::RgbdFrame& frame) = 0;
+  // One line for the log, e.g. "ground-truth masks (class person)".
+  virtual std::string Describe() const = 0;
+};
+
+// "gt": the sequence's own masks (mask.txt, `dlslam synth`), class-based:
+// every person pixel, moving or not (what a perfect network would give).
+// Otherwise a folder of PNG masks named like the colour images
+// (<rgb file stem>.png, 8-bit, non-zero = dynamic). Throws InputError when
+// the sequence has no masks (gt) or the folder does not exist.
+std::unique_ptr<SemanticPriorSource> MakeSemanticPriorSource(const std::string& spec,
+                                                             const io::RgbdSequence& sequence);
+
+// Ground truth of `dlslam synth` labels (class + 128 if moving): 255 where
+// the moving bit is set (what should be removed), for statistics.
+cv::Mat MovingTruthFromLabels(const cv::Mat& labels);
+// 255 where the label's class is `class_id`, whatever the moving bit.
+cv::Mat ClassMaskFromLabels(const cv::Mat& labels, int class_id);
+
+}  // namespace dlslam::app

@@ -1,0 +1,35 @@
+#include "dlslam/system/dynamic_options.h"
+
+#include "dlslam/util/check.h"
+
+namespace dlslam {
+
+const char* ToString(DynamicMode mode) {
+  switch (mode) {
+    case DynamicMode::kOrb: return "orb";
+    case DynamicMode::kSemantic: return "semantic";
+    case DynamicMode::kGeometry: return "geometry";
+    case DynamicMode::kFull: return "full";
+  }
+  return "?";
+}
+
+DynamicMode ParseDynamicMode(const std::string& name) {
+  for (DynamicMode mode : {DynamicMode::kOrb, DynamicMode::kSemantic, DynamicMode::kGeometry, DynamicMode::kFull}) {
+    if (name == ToString(mode)) return mode;
+  }
+  throw Error(fmt::format("unknown dynamic mode '{}' (choose orb, semantic, geometry or full)", name));
+}
+
+bool UsesSemanticPrior(DynamicMode mode) { return mode == DynamicMode::kSemantic || mode == DynamicMode::kFull; }
+bool UsesGeometry(DynamicMode mode) { return mode == DynamicMode::kGeometry || mode == DynamicMode::kFull; }
+
+void DynamicOptions::Check() const {
+  DLSLAM_CHECK(mode == DynamicMode::kOrb || mode == DynamicMode::kSemantic || mode == DynamicMode::kGeometry ||
+                   mode == DynamicMode::kFull,
+               "unknown dynamic mode {}", static_cast<int>(mode));
+  geometry.Check();
+  fusion.Check();
+}
+
+}  // namespace dlslam

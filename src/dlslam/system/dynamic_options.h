@@ -1,0 +1,45 @@
+#pragma once
+// How SlamSystem handles moving objects (paper Sec. III): the mode picks
+// which detectors remove keypoints before tracking, the rest configures them.
+//   orb       the ORB-SLAM3-style baseline: nothing is removed
+//   semantic  keypoints on the caller's semantic a-priori mask are removed
+//   geometry  multi-view geometry finds moving regions (no network)
+//   full      semantic prior and geometry, combined by the fusion policy
+
+#include <string>
+
+#include "dlslam/dynamic/geometry_detector.h"
+#include "dlslam/dynamic/mask_fusion.h"
+
+namespace dlslam {
+
+enum class DynamicMode { kOrb, kSemantic, kGeometry, kFull };
+
+// "orb", "semantic", "geometry", "full".
+const char* ToString(DynamicMode mode);
+// The inverse of ToString; throws dlslam::Error naming the choices.
+DynamicMode ParseDynamicMode(const std::string& name);
+
+// Whether the mode uses the semantic prior / the geometric detector.
+bool UsesSemanticPrior(DynamicMode mode);
+bool UsesGeometry(DynamicMode mode);
+
+struct DynamicOptions {
+  DynamicMode mode = DynamicMode::kOrb;
+  // The multi-view check, its search (exhaustive or ant colony) and region
+  // growing. geometry.multiview.max_reference_views is how many earlier
+  // keyframes are projected into each frame (paper: 5).
+  dynamic::GeometryOptions geometry;
+  // How the semantic prior and the geometric mask combine in mode full, and
+  // the dilation of the removal mask in every mode (modes semantic and
+  // geometry use policies semantic and geometry with the same dilation).
+  dynamic::FusionOptions fusion;
+  // Map points that geometry shows to have moved away (a reference keyframe
+  // saw them, the current depth sees through where they were) are removed
+  // from the map, so tracking never matches them again.
+  bool cull_vanished_points = true;
+
+  void Check() const;
+};
+
+}  // namespace dlslam

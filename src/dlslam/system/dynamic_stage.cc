@@ -1,0 +1,131 @@
+#include "dlslam/system/dynamic_stage.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dlslam/util/check.h"
+
+namespace dlslam {
+
+std::optional<double> DynamicStats::precision() const {
+  const std::int64_t removed = true_positives + false_positives;
+  if (frames_with_truth == 0 || removed == 0) return std::nullopt;
+  return static_cast<double>(true_positives) / static_cast<double>(removed);
+}
+
+std::optional<double> DynamicStats::recall() const {
+  const std::int64_t moving = true_positives + false_negatives;
+  if (frames_with_truth == 0 || moving == 0) return std::nullopt;
+  return static_cast<double>(true_positives) / static_cast<double>(moving);
+}
+
+dynamic::ReferenceView MakeReferenceView(const KeyFrameSnapshot& keyframe) {
+  DLSLAM_CHECK(keyframe.frame != nullptr);
+  const Frame& frame = *keyframe.frame;
+  DLSLAM_CHECK_EQ(keyframe.points.size(), frame.size(), "one map point slot per keypoint");
+  dynamic::ReferenceView view;
+  view.cam_from_world = keyframe.cam_from_world;
+  const SE3d world_from_cam = keyframe.cam_from_world.Inverse();
+  view.points.reserve(frame.size());
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const std::optional<Eigen::Vector3d> p_cam = frame.Unproject(i);
+    if (!p_cam) continue;
+    view.points.push_back({world_from_cam * *p_cam, keyframe.points[i]});
+  }
+  return view;
+}
+
+DynamicStage::DynamicStage(const DynamicOptions& options, const CameraIntrinsics& camera, Map* map,
+                           const Tracker* tracker, StageTimings* timings)
+    : options_(options),
+      camera_(camera),
+      map_(map),
+      tracker_(tracker),
+      timings_(timings),
+      detector_(options.geometry) {
+  options_.Check();
+  DLSLAM_CHECK(map_ != nullptr && tracker_ != nullptr && timings_ != nullptr);
+  stats_.mode = options_.mode;
+  stats_.search = options_.geometry.search;
+  stats_.fusion = options_.fusion.policy;
+}
+
+void DynamicStage::Process(Frame* frame, const cv::Mat& depth, const DynamicInputs& inputs) {
+  DLSLAM_CHECK(frame != nullptr);
+  stats_.keypoints_total += static_cast<std::int64_t>(frame->size());
+  for (std::size_t i = 0; i < frame->size(); ++i) frame->SetIgnored(i, false);
+  if (options_.mode != DynamicMode::kOrb) {
+    const cv::Mat prior = UsesSemanticPrior(options_.mode) ? SemanticPrior(inputs) : cv::Mat();
+    dynamic::GeometryResult geometry;  // empty mask: the check did not run
+    if (UsesGeometry(options_.mode) && !depth.empty()) {
+      // The first pose estimate must not lean on what the network already
+      // knows to move: flag the prior's keypoints while estimating.
+      if (!prior.empty()) frame->IgnoreMasked(prior);
+      Stopwatch watch;
+      geometry = DetectGeometrically(*frame, depth);
+      timings_->Add("geometry", watch.ElapsedMs());
+      for (std::size_t i = 0; i < frame->size(); ++i) frame->SetIgnored(i, false);
+    }
+    dynamic::FusionOptions fusion = options_.fusion;
+    if (options_.mode == DynamicMode::kSemantic) fusion.policy = dynamic::FusionPolicy::kSemanticOnly;
+    if (options_.mode == DynamicMode::kGeometry) fusion.policy = dynamic::FusionPolicy::kGeometryOnly;
+    const cv::Mat removal = dynamic::FuseDynamicMasks(prior, geometry, fusion);
+    if (!removal.empty()) stats_.keypoints_removed += frame->IgnoreMasked(removal);
+  }
+  if (!inputs.moving_truth.empty()) CountAgainstTruth(*frame, inputs.moving_truth);
+}
+
+cv::Mat DynamicStage::SemanticPrior(const DynamicInputs& inputs) {
+  if (!inputs.semantic_prior) return {};
+  Stopwatch watch;
+  cv::Mat prior = inputs.semantic_prior();
+  timings_->Add("semantic_wait", watch.ElapsedMs());
+  if (prior.empty()) return prior;
+  DLSLAM_CHECK(prior.type() == CV_8UC1 && prior.cols == camera_.width && prior.rows == camera_.height,
+               "the semantic prior must be 8-bit single-channel {}x{}, got type {} {}x{}", camera_.width,
+               camera_.height, prior.type(), prior.cols, prior.rows);
+  return prior;
+}
+
+dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, const cv::Mat& depth) {
+  DLSLAM_CHECK(depth.type() == CV_32FC1 && depth.cols == camera_.width && depth.rows == camera_.height,
+               "depth must be float metres {}x{}", camera_.width, camera_.height);
+  const std::optional<SE3d> cam_from_world = tracker_->EstimatePose(frame);
+  if (!cam_from_world) return {};  // not tracking: no pose to project with
+  const std::size_t n = static_cast<std::size_t>(options_.geometry.multiview.max_reference_views);
+  std::vector<dynamic::ReferenceView> views;
+  for (const KeyFrameSnapshot& kf : map_->GetCovisibleKeyFrames(tracker_->reference_keyframe(), n)) {
+    views.push_back(MakeReferenceView(kf));
+  }
+  if (views.empty()) return {};
+  dynamic::GeometryResult result = detector_.Detect(depth, camera_, *cam_from_world, views);
+  ++stats_.frames_with_geometry;
+  stats_.keypoints_tested += result.points_tested;
+  stats_.keypoints_dynamic += result.points_dynamic;
+  if (options_.cull_vanished_points && !result.vanished_ids.empty()) {
+    std::vector<MapPointId> doomed;
+    for (std::uint64_t id : result.vanished_ids) {
+      if (id != kNoId) doomed.push_back(id);
+    }
+    stats_.map_points_culled += map_->ErasePoints(doomed);
+  }
+  return result;
+}
+
+void DynamicStage::CountAgainstTruth(const Frame& frame, const cv::Mat& truth) {
+  DLSLAM_CHECK(truth.type() == CV_8UC1 && truth.cols == camera_.width && truth.rows == camera_.height,
+               "the ground-truth mask must be 8-bit single-channel {}x{}", camera_.width, camera_.height);
+  ++stats_.frames_with_truth;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const Eigen::Vector2f& uv = frame.keypoint(i).raw_uv;
+    const int x = std::clamp(static_cast<int>(std::lround(uv.x())), 0, truth.cols - 1);
+    const int y = std::clamp(static_cast<int>(std::lround(uv.y())), 0, truth.rows - 1);
+    const bool moving = truth.at<uchar>(y, x) != 0;
+    const bool removed = frame.ignored(i);
+    if (removed && moving) ++stats_.true_positives;
+    if (removed && !moving) ++stats_.false_positives;
+    if (!removed && moving) ++stats_.false_negatives;
+  }
+}
+
+}  // namespace dlslam

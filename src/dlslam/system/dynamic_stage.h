@@ -1,0 +1,91 @@
+#pragma once
+// The per-frame dynamic-object stage of SlamSystem, between ORB extraction
+// and tracking: waits for the semantic prior, tests the frame's depth against
+// earlier keyframes (multi-view geometry with the tracker's first pose
+// estimate), fuses both into one removal mask, flags the keypoints on it as
+// ignored, and culls map points that moved away. Runs on the tracking thread;
+// it reads the map through copies and writes to it only through Map's
+// locked calls, so the local-mapping thread may run alongside.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+
+#include "dlslam/data/frame.h"
+#include "dlslam/map/map.h"
+#include "dlslam/system/dynamic_options.h"
+#include "dlslam/tracking/tracker.h"
+#include "dlslam/util/timing.h"
+
+namespace dlslam {
+
+// What the caller adds to a frame for the dynamic stage.
+struct DynamicInputs {
+  // The semantic a-priori mask (CV_8UC1, the colour image's size, non-zero =
+  // a class that may move, e.g. people), deferred: called once per frame,
+  // after ORB extraction, only in modes semantic and full. It may block
+  // until a segmentation thread has the mask (the wait is timed as stage
+  // "semantic_wait"). Empty function or empty Mat: no prior for this frame.
+  std::function<cv::Mat()> semantic_prior;
+  // Ground truth for statistics only (CV_8UC1, non-zero = moving); empty =
+  // none. Never used to decide anything.
+  cv::Mat moving_truth;
+};
+
+// Totals over a run.
+struct DynamicStats {
+  DynamicMode mode = DynamicMode::kOrb;
+  dynamic::SearchKind search = dynamic::SearchKind::kAntColony;
+  dynamic::FusionPolicy fusion = dynamic::FusionPolicy::kUnion;  // as configured (used in mode full)
+  std::int64_t keypoints_total = 0;   // keypoints extracted, in every frame
+  std::int64_t keypoints_tested = 0;   // projected reference points tested by geometry
+  std::int64_t keypoints_dynamic = 0;  // of those, found moving
+  std::int64_t keypoints_removed = 0;  // frame keypoints ignored (prior, geometry or both)
+  std::int64_t frames_with_geometry = 0;  // frames the geometric check ran on
+  std::int64_t map_points_culled = 0;     // vanished map points removed from the map
+  // Per keypoint of every frame with ground truth: removed and moving (true
+  // positive), removed and still (false positive), kept and moving (false negative).
+  std::int64_t frames_with_truth = 0;
+  std::int64_t true_positives = 0;
+  std::int64_t false_positives = 0;
+  std::int64_t false_negatives = 0;
+
+  // nullopt without ground truth, or when nothing was removed / nothing moved.
+  std::optional<double> precision() const;
+  std::optional<double> recall() const;
+};
+
+// A keyframe's keypoints that have depth, in world coordinates, with the map
+// point each holds (kNoId if none): what the geometric check projects.
+dynamic::ReferenceView MakeReferenceView(const KeyFrameSnapshot& keyframe);
+
+class DynamicStage {
+ public:
+  // `map`, `tracker` and `timings` outlive the stage.
+  DynamicStage(const DynamicOptions& options, const CameraIntrinsics& camera, Map* map, const Tracker* tracker,
+               StageTimings* timings);
+
+  // Sets `frame`'s ignored flags (clearing earlier ones). `depth`: the
+  // frame's CV_32FC1 metres (empty: geometry is skipped). Throws
+  // dlslam::Error for a prior of the wrong type or size.
+  void Process(Frame* frame, const cv::Mat& depth, const DynamicInputs& inputs);
+
+  const DynamicStats& stats() const { return stats_; }
+
+ private:
+  cv::Mat SemanticPrior(const DynamicInputs& inputs);
+  // The multi-view check with the tracker's first pose estimate; a result
+  // with an empty mask when it cannot run (not tracking, no keyframe).
+  dynamic::GeometryResult DetectGeometrically(const Frame& frame, const cv::Mat& depth);
+  void CountAgainstTruth(const Frame& frame, const cv::Mat& truth);
+
+  DynamicOptions options_;
+  CameraIntrinsics camera_;
+  Map* map_;
+  const Tracker* tracker_;
+  StageTimings* timings_;
+  dynamic::GeometryDetector detector_;
+  DynamicStats stats_;
+};
+
+}  // namespace dlslam

@@ -1,0 +1,176 @@
+// End to end on a synthetic walking sequence: the dynamic stage in the full
+// system (sequential mode, reproducible), against the renderer's ground
+// truth: which keypoints moved, and where the camera was.
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "dlslam/eval/ate.h"
+#include "dlslam/synth/actors.h"
+#include "dlslam/synth/sequence.h"
+#include "dlslam/system/slam_system.h"
+
+namespace dlslam {
+namespace {
+
+struct Rendered {
+  double timestamp = 0.0;
+  cv::Mat colour, depth;
+  cv::Mat moving;  // 255 where a surface moved (the mask's moving bit)
+  cv::Mat person;  // 255 on people, moving or not: a perfect network's prior
+};
+
+struct Outcome {
+  RunStats stats;
+  double ate_rmse = 0.0;
+};
+
+class DynamicPipelineTest : public ::testing::Test {
+ protected:
+  static constexpr int kFrames = 100;
+
+  static void SetUpTestSuite() {
+    synth::SynthOptions options;
+    options.preset = synth::Preset::kWalkingXyz;
+    options.frames = kFrames;
+    options.seed = 1;
+    const synth::SynthSequence sequence(options);
+    frames_ = new std::vector<Rendered>();
+    ground_truth_ = new Trajectory(sequence.camera_path());
+    camera_ = new CameraIntrinsics(options.camera);
+    for (int i = 0; i < sequence.size(); ++i) {
+      synth::RenderedFrame f = sequence.Render(i);
+      Rendered r;
+      r.timestamp = sequence.camera_path()[i].timestamp;
+      r.colour = f.colour;
+      r.depth = f.depth;
+      r.moving = cv::Mat(f.mask.size(), CV_8UC1);
+      r.person = cv::Mat(f.mask.size(), CV_8UC1);
+      for (int y = 0; y < f.mask.rows; ++y) {
+        for (int x = 0; x < f.mask.cols; ++x) {
+          const std::uint8_t v = f.mask.at<std::uint8_t>(y, x);
+          r.moving.at<std::uint8_t>(y, x) = synth::MaskMoving(v) ? 255 : 0;
+          r.person.at<std::uint8_t>(y, x) = synth::MaskClass(v) == synth::kClassPerson ? 255 : 0;
+        }
+      }
+      frames_->push_back(std::move(r));
+    }
+  }
+  static void TearDownTestSuite() {
+    delete frames_;
+    delete ground_truth_;
+    delete camera_;
+  }
+
+  static Outcome Run(DynamicMode mode, dynamic::SearchKind search = dynamic::SearchKind::kExhaustive,
+                     bool sequential = true) {
+    SystemOptions options;
+    options.sequential = sequential;
+    options.dynamic.mode = mode;
+    options.dynamic.geometry.search = search;
+    SlamSystem slam(*camera_, options);
+    for (const Rendered& f : *frames_) {
+      DynamicInputs inputs;
+      inputs.semantic_prior = [&f] { return f.person; };
+      inputs.moving_truth = f.moving;
+      slam.TrackRgbd(f.colour, f.depth, f.timestamp, inputs);
+    }
+    slam.Shutdown();
+    Outcome out;
+    out.stats = slam.Stats();
+    out.ate_rmse = eval::ComputeAte(*ground_truth_, slam.CameraTrajectory()).error.rmse;
+    return out;
+  }
+
+  static std::vector<Rendered>* frames_;
+  static Trajectory* ground_truth_;
+  static CameraIntrinsics* camera_;
+};
+
+std::vector<Rendered>* DynamicPipelineTest::frames_ = nullptr;
+Trajectory* DynamicPipelineTest::ground_truth_ = nullptr;
+CameraIntrinsics* DynamicPipelineTest::camera_ = nullptr;
+
+// Bounds, and why:
+// - ATE: the ORB baseline follows the walkers (0.87 m on 300 frames of this
+//   preset, docs/synth.md), while removing the moving pixels by ground truth
+//   gives 3.6 mm; geometry must be close to the latter: under 2 cm (DynaSLAM's
+//   1.6 cm on the real walking_xyz) and ten times better than orb.
+// - Precision: removing the same number of keypoints at random would hit
+//   moving ones at the base rate (moving / all keypoints); geometry must do
+//   at least twice as well. (Its removals include the still parts of
+//   people and the dilated silhouettes, so it is well below 1.)
+// - Recall: at least 80 % of the keypoints on moving surfaces removed.
+TEST_F(DynamicPipelineTest, GeometryFindsTheWalkersAndSavesTheTrajectory) {
+  const Outcome orb = Run(DynamicMode::kOrb);
+  const Outcome geometry = Run(DynamicMode::kGeometry);
+  const DynamicStats& d = geometry.stats.dynamic;
+  ASSERT_EQ(d.frames_with_truth, kFrames);
+  ASSERT_TRUE(d.precision() && d.recall());
+  const double base_rate =
+      static_cast<double>(d.true_positives + d.false_negatives) / static_cast<double>(d.keypoints_total);
+  std::printf("orb ATE %.4f m; geometry ATE %.4f m, precision %.3f (base rate %.3f) recall %.3f\n", orb.ate_rmse,
+              geometry.ate_rmse, *d.precision(), base_rate, *d.recall());
+  EXPECT_EQ(orb.stats.dynamic.keypoints_removed, 0);
+  EXPECT_EQ(orb.stats.dynamic.recall(), 0.0);
+  EXPECT_EQ(geometry.stats.frames_tracked, kFrames);
+  EXPECT_LT(geometry.ate_rmse, 0.02);
+  EXPECT_GT(orb.ate_rmse, 10 * geometry.ate_rmse);
+  EXPECT_GT(*d.precision(), 2 * base_rate);
+  EXPECT_GT(*d.recall(), 0.8);
+  EXPECT_LE(d.keypoints_dynamic, d.keypoints_tested);
+  EXPECT_EQ(d.frames_with_geometry, kFrames - 1);  // all but the first, which has no keyframe before it
+}
+
+// The ant colony search must test far fewer points (the issue asks for far
+// fewer; we hold it to three quarters) and find nearly the same keypoints:
+// recall within 5 points of the exhaustive search's, trajectory as good.
+TEST_F(DynamicPipelineTest, AntColonyTestsFewerPointsWithNearlyTheSameRecall) {
+  const Outcome exhaustive = Run(DynamicMode::kGeometry, dynamic::SearchKind::kExhaustive);
+  const Outcome ant = Run(DynamicMode::kGeometry, dynamic::SearchKind::kAntColony);
+  const DynamicStats& e = exhaustive.stats.dynamic;
+  const DynamicStats& a = ant.stats.dynamic;
+  ASSERT_TRUE(e.recall() && a.recall());
+  std::printf("exhaustive: tested %lld recall %.3f ATE %.4f; ant: tested %lld recall %.3f ATE %.4f\n",
+              static_cast<long long>(e.keypoints_tested), *e.recall(), exhaustive.ate_rmse,
+              static_cast<long long>(a.keypoints_tested), *a.recall(), ant.ate_rmse);
+  EXPECT_LT(a.keypoints_tested, 0.75 * static_cast<double>(e.keypoints_tested));
+  EXPECT_GT(*a.recall(), *e.recall() - 0.05);
+  EXPECT_LT(ant.ate_rmse, 0.02);
+}
+
+// A perfect network prior (people, moving or not) with geometry. The scene
+// also has boxes that are carried or slid: a class the prior does not know,
+// so the semantic mode alone misses them and only geometry can find them.
+TEST_F(DynamicPipelineTest, FullModeAddsWhatThePriorDoesNotKnow) {
+  const Outcome full = Run(DynamicMode::kFull);
+  const Outcome semantic = Run(DynamicMode::kSemantic);
+  const DynamicStats& f = full.stats.dynamic;
+  const DynamicStats& s = semantic.stats.dynamic;
+  ASSERT_TRUE(f.recall() && s.recall() && f.precision());
+  std::printf("full: ATE %.4f precision %.3f recall %.3f; semantic: ATE %.4f precision %.3f recall %.3f\n",
+              full.ate_rmse, *f.precision(), *f.recall(), semantic.ate_rmse, s.precision().value_or(-1),
+              *s.recall());
+  EXPECT_EQ(full.stats.frames_tracked, kFrames);
+  EXPECT_LT(full.ate_rmse, 0.02);
+  // Union with the prior: at least as complete as geometry's 80 %, and
+  // strictly more complete than the prior alone (the boxes).
+  EXPECT_GT(*f.recall(), 0.8);
+  EXPECT_GT(*f.recall(), *s.recall());
+  EXPECT_GT(s.keypoints_removed, 0);
+  EXPECT_EQ(s.keypoints_tested, 0);
+}
+
+// With the local-mapping thread running beside the dynamic stage (it reads
+// keyframes and culls map points while mapping refines them): the same
+// quality, not bit-reproducible. Under TSan this is the race check.
+TEST_F(DynamicPipelineTest, FullModeWithTheMappingThread) {
+  const Outcome full = Run(DynamicMode::kFull, dynamic::SearchKind::kAntColony, /*sequential=*/false);
+  EXPECT_EQ(full.stats.frames_tracked, kFrames);
+  EXPECT_LT(full.ate_rmse, 0.02);
+  EXPECT_GT(full.stats.dynamic.recall().value_or(0), 0.8);
+}
+
+}  // namespace
+}  // namespace dlslam

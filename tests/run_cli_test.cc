@@ -1,0 +1,184 @@
+// `dlslam run` with the dynamic modes, run as a user runs it: the report's
+// "dynamic" object, the semantic prior sources, and bad values refused with a
+// clear message and a non-zero exit.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <string>
+#include <sys/wait.h>
+
+#include "dlslam/io/sequence.h"
+#include "dlslam/io/sequence_writer.h"
+#include "dlslam/synth/actors.h"
+#include "dlslam/synth/sequence.h"
+#include "tests/support/test_data.h"
+
+namespace dlslam {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string output;
+};
+
+std::string Quoted(const fs::path& p) {
+  std::string quoted(1, '\'');
+  quoted.append(p.string()).push_back('\'');
+  return quoted;
+}
+
+// Runs the CLI through the shell, stdout and stderr together.
+CliRun Cli(const std::string& args) {
+  const std::string command = Quoted(DLSLAM_CLI_PATH) + " " + args + " 2>&1";
+  CliRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return run;
+  char buffer[4096];
+  for (std::size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) run.output.append(buffer, n);
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+class RunCliTest : public ::testing::Test {
+ protected:
+  // 40 frames of walking_xyz with ground-truth masks, written once.
+  static void SetUpTestSuite() {
+    root_ = new fs::path(testing::MakeTempDir("run_cli"));
+    synth::SynthOptions options;
+    options.preset = synth::Preset::kWalkingXyz;
+    options.frames = 40;
+    options.seed = 3;
+    const synth::SynthSequence sequence(options);
+    io::SequenceWriterOptions write;
+    io::SequenceWriter writer(*root_ / "walk", options.camera, write);
+    for (int i = 0; i < sequence.size(); ++i) {
+      const synth::RenderedFrame f = sequence.Render(i);
+      writer.Add(sequence.camera_path()[i].timestamp, f.colour, f.depth, f.mask, f.world_from_cam);
+    }
+    writer.Finish();
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*root_);
+    delete root_;
+  }
+  void SetUp() override { out_ = testing::MakeTempDir("run_cli_out"); }
+  void TearDown() override { fs::remove_all(out_); }
+
+  static fs::path Walk() { return *root_ / "walk"; }
+  std::string RunArgs(const fs::path& sequence, const std::string& extra) const {
+    return "run --sequence " + Quoted(sequence) + " --out " + Quoted(out_ / "t.txt") + " --sequential " + extra;
+  }
+  nlohmann::json Report(const std::string& name) const {
+    nlohmann::json j;
+    std::ifstream(out_ / name) >> j;
+    return j;
+  }
+
+  static fs::path* root_;
+  fs::path out_;
+};
+
+fs::path* RunCliTest::root_ = nullptr;
+
+TEST_F(RunCliTest, BadModeSearchAndFusionNamesAreRefused) {
+  for (const std::string bad : {"--mode dyna", "--geometry-search random", "--fusion intersection"}) {
+    const CliRun run = Cli(RunArgs(Walk(), bad));
+    EXPECT_NE(run.exit_code, 0) << bad;
+    EXPECT_THAT(run.output, HasSubstr(bad.substr(bad.find(' ') + 1))) << bad;
+    EXPECT_THAT(run.output, HasSubstr("not in")) << run.output;
+  }
+}
+
+TEST_F(RunCliTest, SemanticModesNeedAPrior) {
+  CliRun run = Cli(RunArgs(Walk(), "--mode semantic"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("[error] --mode semantic needs a semantic prior: --semantic-masks gt"));
+  run = Cli(RunArgs(Walk(), "--mode full --semantic-masks " + Quoted(out_ / "nope")));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, AllOf(HasSubstr("nope"), HasSubstr("--semantic-masks: not a folder")));
+}
+
+TEST_F(RunCliTest, GroundTruthPriorNeedsMasks) {
+  // The same sequence without its mask list.
+  const fs::path copy = out_ / "no_masks";
+  fs::copy(Walk(), copy, fs::copy_options::recursive);
+  fs::remove(copy / "mask.txt");
+  const CliRun run = Cli(RunArgs(copy, "--mode semantic --semantic-masks gt"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, AllOf(HasSubstr("mask.txt"), HasSubstr("needs the sequence's ground-truth masks")));
+}
+
+TEST_F(RunCliTest, FolderPriorWithAMissingMaskNamesIt) {
+  const fs::path masks = out_ / "masks";
+  fs::create_directories(masks);
+  const io::RgbdSequence sequence = io::RgbdSequence::Open(Walk());
+  const fs::path first = sequence.frames()[0].rgb.path;
+  cv::imwrite((masks / first.filename()).string(), cv::Mat(480, 640, CV_8UC1, cv::Scalar(0)));
+  const CliRun run = Cli(RunArgs(Walk(), "--mode semantic --semantic-masks " + Quoted(masks)));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, AllOf(HasSubstr("rgb.txt:5: mask image"), HasSubstr("file not found")));
+}
+
+TEST_F(RunCliTest, ReportHasTheDynamicObject) {
+  const CliRun run = Cli(RunArgs(Walk(), "--mode full --semantic-masks gt --report " + Quoted(out_ / "r.json")));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json j = Report("r.json");
+  for (const char* key : {"frames", "frames_tracked", "keyframes", "map_points", "timing_ms", "ate"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  const nlohmann::json& d = j.at("dynamic");
+  EXPECT_EQ(d.at("mode"), "full");
+  EXPECT_EQ(d.at("search"), "ant");
+  EXPECT_EQ(d.at("fusion"), "union");
+  EXPECT_GT(d.at("keypoints_tested").get<int>(), 0);
+  EXPECT_GT(d.at("keypoints_removed").get<int>(), 0);
+  EXPECT_GE(d.at("keypoints_tested").get<int>(), d.at("keypoints_dynamic").get<int>());
+  for (const char* stage : {"geometry_ms", "semantic_ms", "semantic_wait_ms"}) {
+    ASSERT_TRUE(d.at(stage).is_object()) << stage;
+    EXPECT_GE(d.at(stage).at("p95").get<double>(), d.at(stage).at("median").get<double>()) << stage;
+  }
+  EXPECT_EQ(d.at("frames_with_truth"), 40);
+  const double precision = d.at("precision");
+  const double recall = d.at("recall");
+  const double tp = d.at("true_positives"), fp = d.at("false_positives"), fn = d.at("false_negatives");
+  EXPECT_DOUBLE_EQ(precision, tp / (tp + fp));
+  EXPECT_DOUBLE_EQ(recall, tp / (tp + fn));
+  EXPECT_TRUE(j.at("timing_ms").contains("geometry"));
+}
+
+TEST_F(RunCliTest, FolderPriorEqualsTheGroundTruthPrior) {
+  // The person masks written as a folder source give the same removal.
+  const fs::path masks = out_ / "masks";
+  fs::create_directories(masks);
+  const io::RgbdSequence sequence = io::RgbdSequence::Open(Walk());
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    const cv::Mat labels = sequence.LoadFrame(i).mask;
+    cv::Mat person;
+    cv::compare(labels & 0x7F, synth::kClassPerson, person, cv::CMP_EQ);
+    cv::imwrite((masks / (sequence.frames()[i].rgb.path.stem().string() + ".png")).string(), person);
+  }
+  ASSERT_EQ(Cli(RunArgs(Walk(), "--mode semantic --semantic-masks gt --report " + Quoted(out_ / "gt.json"))).exit_code, 0);
+  ASSERT_EQ(Cli(RunArgs(Walk(), "--mode semantic --semantic-masks " + Quoted(masks) + " --report " +
+                                    Quoted(out_ / "dir.json")))
+                .exit_code,
+            0);
+  const nlohmann::json gt = Report("gt.json").at("dynamic");
+  const nlohmann::json dir = Report("dir.json").at("dynamic");
+  EXPECT_GT(gt.at("keypoints_removed").get<int>(), 0);
+  EXPECT_EQ(gt.at("keypoints_removed"), dir.at("keypoints_removed"));
+  EXPECT_EQ(gt.at("true_positives"), dir.at("true_positives"));
+  EXPECT_EQ(gt.at("keypoints_tested"), 0);  // no geometry in mode semantic
+}
+
+}  // namespace
+}  // namespace dlslam
