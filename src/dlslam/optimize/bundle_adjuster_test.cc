@@ -82,7 +82,7 @@ class BundleAdjuster : public ::testing::TestWithParam<BundleSolver> {
 };
 
 INSTANTIATE_TEST_SUITE_P(Solvers, BundleAdjuster, ::testing::Values(BundleSolver::kCeres, BundleSolver::kLm),
-                         [](const auto& info) { return std::string(ToString(info.param)); });
+                         [](const auto& solver_info) { return std::string(ToString(solver_info.param)); });
 
 TEST_P(BundleAdjuster, RecoversPosesAndPointsFromExactObservations) {
   Scene s = MakeScene(0.0, 0.0, 1);
