@@ -99,10 +99,19 @@ TEST_F(RunCliTest, BadModeSearchAndFusionNamesAreRefused) {
   }
 }
 
-TEST_F(RunCliTest, SemanticModesNeedAPrior) {
-  CliRun run = Cli(RunArgs(Walk(), "--mode semantic"));
+TEST_F(RunCliTest, SemanticModesUseTheNetworkUnlessGivenMasks) {
+  // Default prior: the shipped segmentation network in its worker thread.
+  CliRun run = Cli(RunArgs(Walk(), "--mode semantic --max-frames 4 --report " + Quoted(out_ / "net.json")));
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("semantic prior: the segmentation network, every frame"));
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(out_ / "net.json"));
+  EXPECT_EQ(report["timing_ms"]["semantic"]["count"].get<int>(), 4) << report["timing_ms"].dump();
+  EXPECT_GT(report["dynamic"]["semantic_ms"]["median"].get<double>(), 0.0);
+  // A broken model is named; the run does not start.
+  std::ofstream(out_ / "broken.onnx") << "not an onnx model";
+  run = Cli(RunArgs(Walk(), "--mode full --semantic-model " + Quoted(out_ / "broken.onnx")));
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_THAT(run.output, HasSubstr("[error] --mode semantic needs a semantic prior: --semantic-masks gt"));
+  EXPECT_THAT(run.output, AllOf(HasSubstr("[error]"), HasSubstr("broken.onnx")));
   run = Cli(RunArgs(Walk(), "--mode full --semantic-masks " + Quoted(out_ / "nope")));
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_THAT(run.output, AllOf(HasSubstr("nope"), HasSubstr("--semantic-masks: not a folder")));

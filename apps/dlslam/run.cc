@@ -51,20 +51,24 @@ RunOutcome RunSequence(const RunArgs& args) {
   options.dynamic.geometry.search = dynamic::ParseSearchKind(args.geometry_search);
   options.dynamic.fusion.policy = ParseFusion(args.fusion);
   const bool wants_prior = UsesSemanticPrior(options.dynamic.mode);
-  if (wants_prior && args.semantic_masks.empty()) {
-    throw Error(fmt::format("--mode {} needs a semantic prior: --semantic-masks gt (the sequence's ground-truth "
-                            "masks) or --semantic-masks DIR (PNG masks named like the colour images); the "
-                            "segmentation network is not wired into dlslam run yet",
-                            args.mode));
-  }
   const io::RgbdSequence sequence = io::RgbdSequence::Open(args.sequence, args.sequence_options);
   const CameraIntrinsics& camera = sequence.camera();
   std::unique_ptr<SemanticPriorSource> prior_source;
-  if (wants_prior) {
+  if (wants_prior && args.semantic_masks.empty()) {
+    semantic::SegmenterOptions segmenter;
+    segmenter.model_path = args.semantic_model;
+    semantic::SegmentationWorkerOptions worker;
+    worker.segment_every = args.segment_every;
+    prior_source = MakeNetworkPriorSource(segmenter, worker);
+    spdlog::info("semantic prior: {}", prior_source->Describe());
+  } else if (wants_prior) {
     prior_source = MakeSemanticPriorSource(args.semantic_masks, sequence);
     spdlog::info("semantic prior: {}", prior_source->Describe());
   } else if (!args.semantic_masks.empty()) {
     spdlog::warn("--semantic-masks is not used in mode {}", args.mode);
+  }
+  if (!wants_prior && !args.semantic_model.empty()) {
+    spdlog::warn("--semantic-model is not used in mode {}", args.mode);
   }
   SlamSystem slam(camera, options);
   StageTimings source_timings;  // the prior source's own time: stage "semantic"
@@ -152,8 +156,15 @@ void AddRunCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"union", "geometry-confirms", "geometry_confirms", "semantic", "geometry"}));
   cmd->add_option("--semantic-masks", args->semantic_masks,
-                  "Semantic prior for modes semantic/full: gt (the sequence's ground-truth masks, class "
-                  "person) or a folder of PNG masks named like the colour images (non-zero = dynamic)");
+                  "Semantic prior for modes semantic/full instead of the segmentation network: gt (the "
+                  "sequence's ground-truth masks, class person) or a folder of PNG masks named like the colour "
+                  "images (non-zero = dynamic)");
+  cmd->add_option("--semantic-model", args->semantic_model,
+                  "Segmentation network (ONNX) for modes semantic/full; default: the shipped model");
+  cmd->add_option("--segment-every", args->segment_every,
+                  "Segment every k-th frame, propagating the mask to the frames between")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
   cmd->add_flag("--sequential", args->sequential,
                 "Run local mapping inline: deterministic, reproducible bit for bit");
   cmd->add_option("--bundle-solver", args->bundle_solver,

@@ -18,7 +18,9 @@ struct RunArgs {
   std::string mode = "orb";                // orb, semantic, geometry, full
   std::string geometry_search = "ant";     // exhaustive, ant
   std::string fusion = "union";            // union, geometry-confirms, semantic, geometry
-  std::string semantic_masks;              // "gt", a folder, or "" (none)
+  std::string semantic_masks;              // "gt", a folder, or "" (the network)
+  std::filesystem::path semantic_model;    // ONNX file; "" = the shipped model
+  int segment_every = 1;                   // segment every k-th frame
   bool sequential = false;
   std::string bundle_solver = "lm";  // local bundle adjustment: "lm" or "ceres"
   std::size_t max_frames = 0;

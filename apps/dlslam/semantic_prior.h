@@ -15,6 +15,8 @@
 #include <opencv2/core.hpp>
 
 #include "dlslam/io/sequence.h"
+#include "dlslam/semantic/segmentation_worker.h"
+#include "dlslam/semantic/segmenter.h"
 
 namespace dlslam::app {
 
@@ -43,6 +45,12 @@ class SemanticPriorSource {
 // the sequence has no masks (gt) or the folder does not exist.
 std::unique_ptr<SemanticPriorSource> MakeSemanticPriorSource(const std::string& spec,
                                                              const io::RgbdSequence& sequence);
+
+// The segmentation network (the shipped model unless segmenter.model_path is
+// set) in its own thread. Throws InputError naming the model file when it is
+// missing or unusable.
+std::unique_ptr<SemanticPriorSource> MakeNetworkPriorSource(const semantic::SegmenterOptions& segmenter,
+                                                            const semantic::SegmentationWorkerOptions& worker);
 
 // Ground truth of `dlslam synth` labels (class + 128 if moving): 255 where
 // the moving bit is set (what should be removed), for statistics.
