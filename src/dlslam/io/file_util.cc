@@ -48,6 +48,7 @@ std::string ReadFileBytes(const std::filesystem::path& path) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status)) throw InputError(path, 0, "file not found");
+  if (std::filesystem::is_directory(status)) throw InputError(path, 0, "a directory, not a regular file");
   if (!std::filesystem::is_regular_file(status)) throw InputError(path, 0, "not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "cannot open for reading");
