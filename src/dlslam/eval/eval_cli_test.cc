@@ -4,42 +4,23 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <sys/wait.h>
 
+#include "tests/support/cli_run.h"
 #include "tests/support/test_data.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
-
-struct CliRun {
-  int exit_code = -1;
-  std::string output;
-};
-
-std::string Quoted(const fs::path& p) {
-  // Appended piecewise: "'" + s + "'" trips a GCC 12 -Wrestrict false positive.
-  std::string quoted(1, '\'');
-  quoted.append(p.string()).push_back('\'');
-  return quoted;
-}
+using dlslam::testing::CliRun;
+using dlslam::testing::Quoted;
 
 // Runs the CLI through the shell; `redirect` is appended (e.g. "2>&1").
 CliRun Cli(const std::string& args, const std::string& redirect = "2>/dev/null") {
-  const std::string command = Quoted(DLSLAM_CLI_PATH) + " " + args + " " + redirect;
-  CliRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  char buffer[4096];
-  for (std::size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) run.output.append(buffer, n);
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
+  return dlslam::testing::RunShell(Quoted(DLSLAM_CLI_PATH) + " " + args + " " + redirect);
 }
 
 class EvalCliTest : public ::testing::Test {

@@ -5,42 +5,24 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdio>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 
+#include "tests/support/cli_run.h"
 #include "tests/support/test_data.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
-
-struct CliRun {
-  int exit_code = -1;
-  std::string output;
-};
-
-std::string Quoted(const fs::path& p) {
-  std::string quoted(1, '\'');
-  quoted.append(p.string()).push_back('\'');
-  return quoted;
-}
+using dlslam::testing::CliRun;
+using dlslam::testing::Quoted;
 
 // Runs the CLI through the shell with stderr folded into the output.
 CliRun Cli(const std::string& args) {
-  const std::string command = Quoted(DLSLAM_CLI_PATH) + " segment " + args + " 2>&1";
-  CliRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  char buffer[4096];
-  for (std::size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) run.output.append(buffer, n);
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
+  return dlslam::testing::RunShell(Quoted(DLSLAM_CLI_PATH) + " segment " + args + " 2>&1");
 }
 
 const cv::Rect kPerson(40, 30, 50, 60);
