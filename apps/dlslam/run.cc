@@ -96,7 +96,11 @@ RunOutcome RunSequence(const RunArgs& args) {
       };
     }
     const TrackingResult r = slam.TrackRgbd(f.color, f.depth, f.timestamp, inputs);
-    if (r.state != last_state) {
+    if (r.relocalized) {
+      spdlog::info("frame {} (t={:.6f}): tracking {} -> relocalized on keyframe {} ({} inliers)", i, f.timestamp,
+                   ToString(last_state), r.relocalization_keyframe, r.inliers);
+      last_state = r.state;
+    } else if (r.state != last_state) {
       spdlog::info("frame {} (t={:.6f}): tracking {} -> {}", i, f.timestamp, ToString(last_state), ToString(r.state));
       last_state = r.state;
     }

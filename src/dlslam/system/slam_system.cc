@@ -106,12 +106,12 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
 void SlamSystem::LogStateChange(const TrackingResult& result, double timestamp) {
   if (result.relocalized) {
     ++counts_.relocalizations;
-    spdlog::info("t={:.6f}: lost -> relocalized on keyframe {} ({} inliers)", timestamp,
+    spdlog::debug("t={:.6f}: lost -> relocalized on keyframe {} ({} inliers)", timestamp,
                  result.relocalization_keyframe, result.inliers);
   } else if (result.state == TrackingState::kLost && last_state_ == TrackingState::kOk) {
-    spdlog::info("t={:.6f}: ok -> lost", timestamp);
+    spdlog::debug("t={:.6f}: ok -> lost", timestamp);
   } else if (result.state == TrackingState::kOk && last_state_ == TrackingState::kLost) {
-    spdlog::info("t={:.6f}: lost -> ok on the last reference keyframe", timestamp);
+    spdlog::debug("t={:.6f}: lost -> ok on the last reference keyframe", timestamp);
   }
   if (result.state != TrackingState::kNotInitialized) last_state_ = result.state;
 }
@@ -119,7 +119,7 @@ void SlamSystem::LogStateChange(const TrackingResult& result, double timestamp) 
 void SlamSystem::MarkLost(double timestamp) {
   ++counts_.frames;
   ++counts_.frames_lost;
-  if (last_state_ == TrackingState::kOk) spdlog::info("t={:.6f}: ok -> lost (frame unreadable)", timestamp);
+  if (last_state_ == TrackingState::kOk) spdlog::debug("t={:.6f}: ok -> lost (frame unreadable)", timestamp);
   if (last_state_ != TrackingState::kNotInitialized) last_state_ = TrackingState::kLost;
 }
 

@@ -91,7 +91,8 @@ class SlamSystem {
     SE3d cam_from_reference;
   };
 
-  // Logs ok -> lost -> relocalized (or ok again) and counts relocalizations.
+  // Logs ok -> lost -> relocalized (or ok again) at debug level (`dlslam run`
+  // logs the transitions with frame numbers) and counts relocalizations.
   void LogStateChange(const TrackingResult& result, double timestamp);
 
   CameraIntrinsics camera_;
