@@ -25,6 +25,8 @@ BowDescription KeyFrameIndex::Describe(const cv::Mat& descriptors) const {
 }
 
 void KeyFrameIndex::Add(KeyFrameId keyframe, const cv::Mat& descriptors) {
+  // Add and Erase of one keyframe come from the same (mapping) thread, so the
+  // two stores cannot be left disagreeing by an Erase between them.
   BowDescription d = Describe(descriptors);  // outside every lock
   {
     std::lock_guard lock(mutex_);
