@@ -6,8 +6,10 @@
 // any relocalization (a wrong one would corrupt the map).
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 #include <cmath>
+#include <numbers>
 #include <optional>
 
 #include "dlslam/synth/camera_path.h"
@@ -127,6 +129,47 @@ TEST_F(RelocalizationTest, NoRelocalizationInARoomNeverMapped) {
     tracked += run.results[i].state == TrackingState::kOk;
   }
   // Nor does the reference-keyframe retry take the other room for the map.
+  EXPECT_EQ(tracked, 0);
+}
+
+// Harder: the same room (same textures), the camera turned around after the
+// covered stretch, facing the wall behind it that was never in view.
+TEST_F(RelocalizationTest, NoRelocalizationFacingTheWallNeverMapped) {
+  synth::SynthOptions options;
+  options.preset = synth::Preset::kKidnap;
+  options.frames = kFrames;
+  options.seed = 1;
+  options.fps = kFps;
+  const synth::SynthSequence kidnap(options);
+  // The replay keeps the world when its first pose is the path's first one.
+  synth::ReplaySource turned;
+  const SE3d about_face(SO3d::Exp(Eigen::Vector3d(0, std::numbers::pi, 0)), Eigen::Vector3d::Zero());
+  turned.trajectory.push_back(kidnap.camera_path()[0]);
+  for (int i = kResumeFrom; i < kFrames; ++i) {
+    const StampedPose& p = kidnap.camera_path()[static_cast<std::size_t>(i)];
+    turned.trajectory.emplace_back(p.timestamp, p.world_from_cam() * about_face);
+  }
+  for (const StampedPose& p : turned.trajectory) turned.frame_times.push_back(p.timestamp);
+  const synth::SynthSequence behind(options, turned);
+  ASSERT_EQ(behind.size(), kFrames - kResumeFrom + 1);
+  std::vector<Rendered> frames(kidnap_->begin(), kidnap_->begin() + kResumeFrom);
+  for (int i = 1; i < behind.size(); ++i) {
+    synth::RenderedFrame f = behind.Render(i);
+    // Facing away: the camera's optical axis points the other way.
+    ASSERT_LT(f.world_from_cam.so3().matrix().col(2).dot((*kidnap_)[0].world_from_cam.so3().matrix().col(2)), 0);
+    // ... at a textured wall with depth (not a void the test would pass on).
+    cv::Mat grey;
+    cv::cvtColor(f.colour, grey, cv::COLOR_BGR2GRAY);
+    cv::Scalar mean, stddev;
+    cv::meanStdDev(grey, mean, stddev);
+    ASSERT_GT(stddev[0], 10.0) << "frame " << i;
+    ASSERT_GT(cv::countNonZero(f.depth), f.depth.total() / 2) << "frame " << i;
+    frames.push_back({f.colour, f.depth, f.world_from_cam});
+  }
+  const RunResult run = RunSlam(frames);
+  EXPECT_EQ(run.stats.relocalizations, 0);
+  int tracked = 0;
+  for (int i = kResumeFrom; i < kFrames; ++i) tracked += run.results[i].state == TrackingState::kOk;
   EXPECT_EQ(tracked, 0);
 }
 
