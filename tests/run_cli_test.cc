@@ -120,6 +120,25 @@ TEST_F(RunCliTest, FolderPriorWithAMissingMaskNamesIt) {
   EXPECT_THAT(run.output, AllOf(HasSubstr("rgb.txt:5: mask image"), HasSubstr("file not found")));
 }
 
+TEST_F(RunCliTest, ReportCountsRelocalizationsAndVocabularyErrorsAreClear) {
+  const CliRun run = Cli(RunArgs(Walk(), "--max-frames 5 --report " + Quoted(out_ / "r.json")));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json j = Report("r.json");
+  EXPECT_EQ(j.at("relocalizations").get<int>(), 0);  // never lost on this walk
+  EXPECT_EQ(j.at("loops_closed").get<int>(), 0);
+  EXPECT_EQ(Cli(RunArgs(Walk(), "--max-frames 5 --no-relocalization")).exit_code, 0);
+  {
+    std::ofstream bad(out_ / "bad.dlv");
+    bad << "not a vocabulary";
+  }
+  const CliRun broken = Cli(RunArgs(Walk(), "--max-frames 5 --vocabulary " + Quoted(out_ / "bad.dlv")));
+  EXPECT_NE(broken.exit_code, 0);
+  EXPECT_THAT(broken.output, HasSubstr("bad.dlv")) << broken.output;
+  const CliRun missing = Cli(RunArgs(Walk(), "--max-frames 5 --vocabulary " + Quoted(out_ / "none.dlv")));
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_THAT(missing.output, HasSubstr("none.dlv")) << missing.output;
+}
+
 TEST_F(RunCliTest, ReportHasTheDynamicObject) {
   const CliRun run = Cli(RunArgs(Walk(), "--mode full --semantic-masks gt --report " + Quoted(out_ / "r.json")));
   ASSERT_EQ(run.exit_code, 0) << run.output;

@@ -50,6 +50,9 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
   j["frames"] = stats.frames;
   j["frames_tracked"] = stats.frames_tracked;
   j["frames_lost"] = stats.frames_lost;
+  j["relocalizations"] = stats.relocalizations;
+  // Loop closing (issue 4, second part) does not exist yet: always 0 until it does.
+  j["loops_closed"] = 0;
   j["frames_waiting"] = stats.frames_waiting;
   j["keyframes"] = stats.keyframes;
   j["map_points"] = stats.map_points;

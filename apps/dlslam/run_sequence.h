@@ -22,6 +22,8 @@ struct RunArgs {
   std::filesystem::path semantic_model;    // ONNX file; "" = the shipped model
   int segment_every = 1;                   // segment every k-th frame
   bool sequential = false;
+  bool no_relocalization = false;  // --no-relocalization
+  std::string vocabulary;          // --vocabulary; "" = the shipped one
   std::string bundle_solver = "lm";  // local bundle adjustment: "lm" or "ceres"
   std::size_t max_frames = 0;
   io::RgbdSequenceOptions sequence_options;

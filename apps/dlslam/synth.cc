@@ -105,7 +105,8 @@ void AddSynthCommand(CLI::App& app) {
   auto args = std::make_shared<SynthArgs>();
   CLI::App* cmd = app.add_subcommand("synth", "Render a synthetic dynamic RGB-D sequence with ground truth (TUM layout)");
   cmd->add_option("--preset", args->preset,
-                  "static | walking_xyz | walking_rpy | walking_halfsphere | walking_static | sitting_static")
+                  "static | walking_xyz | walking_rpy | walking_halfsphere | walking_static | sitting_static | kidnap "
+                  "(pans 2 s, black 0.5 s, reappears at its pose of 0.4 s)")
       ->capture_default_str();
   CLI::Option* frames = cmd->add_option("--frames", args->frames, "Number of frames (with --replay: at most; default all)")
                             ->capture_default_str()

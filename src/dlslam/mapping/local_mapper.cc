@@ -17,8 +17,8 @@ void LocalMapperOptions::Check() const {
   bundle.Check();
 }
 
-LocalMapper::LocalMapper(const LocalMapperOptions& options, Map* map, StageTimings* timings)
-    : options_(options), map_(map), timings_(timings), queue_(options.queue_capacity) {
+LocalMapper::LocalMapper(const LocalMapperOptions& options, Map* map, StageTimings* timings, KeyFrameHooks hooks)
+    : options_(options), map_(map), timings_(timings), hooks_(std::move(hooks)), queue_(options.queue_capacity) {
   options_.Check();
   DLSLAM_CHECK(map_ != nullptr);
 }
@@ -61,8 +61,14 @@ LocalMappingStats LocalMapper::stats() const {
 }
 
 void LocalMapper::Process(KeyFrameId keyframe) {
-  if (!map_->GetKeyFrame(keyframe)) return;  // culled while queued
+  const std::optional<KeyFrameSnapshot> snapshot = map_->GetKeyFrame(keyframe);
+  if (!snapshot) return;  // culled while queued
   Stopwatch total;
+  if (hooks_.added) {
+    Stopwatch watch;
+    hooks_.added(*snapshot);
+    if (timings_) timings_->Add("keyframe_bow", watch.ElapsedMs());
+  }
   LocalMappingStats step;
   step.points_culled = map_->CullRecentPoints(keyframe, options_.min_point_observations, options_.min_found_ratio);
   if (options_.triangulation) {
@@ -83,8 +89,12 @@ void LocalMapper::Process(KeyFrameId keyframe) {
     step.bundle_outliers = summary.outliers;
     if (timings_) timings_->Add("local_bundle_adjustment", ba.ElapsedMs());
   }
-  step.keyframes_culled =
-      static_cast<int>(map_->CullRedundantKeyFrames(keyframe, options_.close_depth, options_.keyframe_redundancy).size());
+  const std::vector<KeyFrameId> culled =
+      map_->CullRedundantKeyFrames(keyframe, options_.close_depth, options_.keyframe_redundancy);
+  if (hooks_.culled) {
+    for (KeyFrameId id : culled) hooks_.culled(id);
+  }
+  step.keyframes_culled = static_cast<int>(culled.size());
   map_->UpdateConnections(keyframe);
   if (timings_) timings_->Add("local_mapping", total.ElapsedMs());
   std::lock_guard lock(stats_mutex_);

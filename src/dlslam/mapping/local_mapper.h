@@ -7,6 +7,7 @@
 // owns no map state of its own.
 
 #include <atomic>
+#include <functional>
 #include <thread>
 
 #include "dlslam/map/map.h"
@@ -52,10 +53,18 @@ struct LocalMappingStats {
   int bundle_outliers = 0;
 };
 
+// Called on the mapping thread for each keyframe local mapping takes on and
+// each one it culls: how the place-recognition index stays beside the map
+// without the map knowing of it. Must not call back into the mapper.
+struct KeyFrameHooks {
+  std::function<void(const KeyFrameSnapshot&)> added;
+  std::function<void(KeyFrameId)> culled;
+};
+
 class LocalMapper {
  public:
   // `timings` (optional, outlives the mapper) receives per-step durations.
-  LocalMapper(const LocalMapperOptions& options, Map* map, StageTimings* timings = nullptr);
+  LocalMapper(const LocalMapperOptions& options, Map* map, StageTimings* timings = nullptr, KeyFrameHooks hooks = {});
   ~LocalMapper();
   LocalMapper(const LocalMapper&) = delete;
   LocalMapper& operator=(const LocalMapper&) = delete;
@@ -76,6 +85,7 @@ class LocalMapper {
   LocalMapperOptions options_;
   Map* map_;
   StageTimings* timings_;
+  KeyFrameHooks hooks_;
   BoundedQueue<KeyFrameId> queue_;
   std::thread thread_;
   mutable std::mutex stats_mutex_;

@@ -33,7 +33,19 @@ SE3d LookAt(const Eigen::Vector3d& position, const Eigen::Vector3d& target) {
   return SE3d(SO3d(R), position);
 }
 
+// The kidnap preset's pan at pan time u: 0.3 m to the right and 15 deg of
+// yaw over the mapping stretch, with smooth start and end.
+void KidnapPan(double u, Eigen::Vector3d& p, Eigen::Vector3d& rpy) {
+  const double s = 0.5 * (1 - std::cos(kPi * std::clamp(u / kKidnapMappingS, 0.0, 1.0)));
+  p = Eigen::Vector3d(0.3 * s, 0.0, 0.05 * s);
+  rpy = Eigen::Vector3d(0.0, 15 * kDeg * s, 0.0);
+}
+
 }  // namespace
+
+bool LensCovered(Preset preset, double t) {
+  return preset == Preset::kKidnap && t >= kKidnapMappingS && t < kKidnapMappingS + kKidnapCoveredS;
+}
 
 CameraMotion::CameraMotion(Preset preset, std::uint32_t seed) : preset_(preset) {
   std::mt19937 rng = MakeRng(seed, kCameraStream);
@@ -85,6 +97,17 @@ SE3d CameraMotion::FirstFromCam(double t) const {
       const Eigen::Vector3d position(r * std::sin(theta) * std::cos(phi), r * std::sin(theta) * std::sin(phi),
                                      r - r * std::cos(theta));
       return LookAt(position, Eigen::Vector3d(0, 0, 2.5)) * shake;
+    }
+    case Preset::kKidnap: {
+      const double resume = kKidnapMappingS + kKidnapCoveredS;
+      double u = t;  // pan time
+      if (t >= resume) {
+        u = kKidnapResumeAtS + (t - resume);
+      } else if (t >= kKidnapMappingS) {  // covered: carried back from the end to the resume pose
+        u = kKidnapMappingS + (kKidnapResumeAtS - kKidnapMappingS) * (t - kKidnapMappingS) / kKidnapCoveredS;
+      }
+      KidnapPan(u, p, rpy);
+      break;
     }
     case Preset::kWalkingStatic:
     case Preset::kSittingStatic: break;

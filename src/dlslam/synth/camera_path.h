@@ -30,6 +30,16 @@ class CameraMotion {
   double tremor_rotation_rad_ = 0.0;
 };
 
+// The kidnap preset's timeline [s of scene time]: the camera pans for
+// kKidnapMappingS, the lens is covered for kKidnapCoveredS (black frames, no
+// depth; the camera is carried back meanwhile), then the motion replays from
+// kKidnapResumeAtS on, i.e. the camera reappears at a pose it already had.
+inline constexpr double kKidnapMappingS = 2.0;
+inline constexpr double kKidnapCoveredS = 0.5;
+inline constexpr double kKidnapResumeAtS = 0.4;
+// True while the preset's lens is covered (only the kidnap preset has that).
+bool LensCovered(Preset preset, double t);
+
 // The camera path of a preset: `frames` poses at `fps` from `start_timestamp`
 // (timestamps rounded to microseconds, as TUM files store them).
 Trajectory PresetCameraPath(Preset preset, std::uint32_t seed, const SE3d& viewpoint, int frames, double fps,

@@ -67,6 +67,26 @@ TEST(CameraMotion, PresetsMoveLikeTheirTumNamesakes) {
   EXPECT_GT(farthest, 0.55);
 }
 
+TEST(CameraMotion, KidnapReappearsWhereItWas) {
+  const CameraMotion motion(Preset::kKidnap, 5);
+  const double resume = kKidnapMappingS + kKidnapCoveredS;
+  // The pan moves (so there is a map to come back to) ...
+  EXPECT_GT((motion.FirstFromCam(kKidnapMappingS).translation() - motion.FirstFromCam(0).translation()).norm(), 0.2);
+  // ... and after the covered stretch it replays from the resume pose, up to
+  // the hand tremor (a few mm, a fraction of a degree).
+  for (double dt = 0; dt < 1.0; dt += 0.1) {
+    const SE3d again = motion.FirstFromCam(resume + dt);
+    const SE3d before = motion.FirstFromCam(kKidnapResumeAtS + dt);
+    EXPECT_LT((again.translation() - before.translation()).norm(), 0.015) << dt;
+    EXPECT_LT(Angle(again.Inverse() * before), 1.5 * kDeg) << dt;
+  }
+  EXPECT_FALSE(LensCovered(Preset::kKidnap, kKidnapMappingS - 0.01));
+  EXPECT_TRUE(LensCovered(Preset::kKidnap, kKidnapMappingS));
+  EXPECT_TRUE(LensCovered(Preset::kKidnap, resume - 0.01));
+  EXPECT_FALSE(LensCovered(Preset::kKidnap, resume));
+  EXPECT_FALSE(LensCovered(Preset::kStatic, kKidnapMappingS + 0.1));
+}
+
 TEST(CameraPath, PresetPathsStayInTheRoom) {
   const Scene scene = BuildScene(Preset::kStatic, 1);  // every preset shares the room layout
   for (const std::string& name : PresetNames()) {

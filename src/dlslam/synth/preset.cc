@@ -11,13 +11,14 @@
 namespace dlslam::synth {
 
 namespace {
-constexpr std::array<std::pair<Preset, const char*>, 6> kNames = {{
+constexpr std::array<std::pair<Preset, const char*>, 7> kNames = {{
     {Preset::kStatic, "static"},
     {Preset::kWalkingXyz, "walking_xyz"},
     {Preset::kWalkingRpy, "walking_rpy"},
     {Preset::kWalkingHalfsphere, "walking_halfsphere"},
     {Preset::kWalkingStatic, "walking_static"},
     {Preset::kSittingStatic, "sitting_static"},
+    {Preset::kKidnap, "kidnap"},
 }};
 }  // namespace
 

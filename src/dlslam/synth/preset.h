@@ -15,6 +15,7 @@ enum class Preset {
   kWalkingHalfsphere,  // two people walk; camera moves on a half sphere (1 m diameter)
   kWalkingStatic,      // two people walk; camera nearly still (sub-cm jitter)
   kSittingStatic,      // two people sit and gesture, a box slides; camera nearly still
+  kKidnap,             // no people; the camera pans, is covered (black frames), and reappears where it was
 };
 
 // Throws dlslam::Error listing the known names.

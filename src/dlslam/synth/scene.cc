@@ -90,7 +90,7 @@ Scene BuildScene(Preset preset, std::uint32_t seed, const SceneOptions& options)
   std::mt19937 rng = MakeRng(seed, kSceneStream);
   RoomOptions room_options;
   room_options.ceiling = options.ceiling;
-  const bool walking = preset != Preset::kStatic && preset != Preset::kSittingStatic;
+  const bool walking = preset != Preset::kStatic && preset != Preset::kSittingStatic && preset != Preset::kKidnap;
   room_options.chairs_at_desk = !walking;
   room_options.desk_shift_y = walking ? room::kWalkingDeskShift : 0.0;
   BuildRoom(s, room_options, rng);
@@ -101,7 +101,8 @@ Scene BuildScene(Preset preset, std::uint32_t seed, const SceneOptions& options)
   R.col(1) = R.col(2).cross(R.col(0));
   s.viewpoint = SE3d(SO3d(R), room::kViewpoint);
   switch (preset) {
-    case Preset::kStatic: break;
+    case Preset::kStatic:
+    case Preset::kKidnap: break;
     case Preset::kSittingStatic: AddSitters(s, rng); break;
     case Preset::kWalkingXyz:
     case Preset::kWalkingRpy:

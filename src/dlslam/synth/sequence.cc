@@ -55,7 +55,14 @@ RenderedFrame SynthSequence::Render(int index) const {
     state.previous_world_from_cam = &previous;
     state.frame_interval_s = path_[i].timestamp - path_[i - 1].timestamp;
   }
-  return RenderFrame(scene_, options_.camera, state, options_.render, rng);
+  RenderedFrame frame = RenderFrame(scene_, options_.camera, state, options_.render, rng);
+  if (LensCovered(options_.preset, state.scene_time)) {  // black, and no depth either
+    frame.colour.setTo(cv::Scalar::all(0));
+    frame.depth.setTo(0.f);
+    frame.true_depth.setTo(0.f);
+    frame.mask.setTo(0);
+  }
+  return frame;
 }
 
 }  // namespace dlslam::synth

@@ -1,8 +1,33 @@
 #include "dlslam/system/slam_system.h"
 
+#include <spdlog/spdlog.h>
+
+#include "dlslam/place/vocabulary_file.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam {
+
+namespace {
+
+std::unique_ptr<place::KeyFrameIndex> MakeKeyFrameIndex(const SystemOptions& options) {
+  if (!options.relocalization) return nullptr;
+  const std::filesystem::path file = place::FindVocabulary(options.vocabulary);
+  const Stopwatch watch;
+  auto vocabulary = std::make_shared<const place::Vocabulary>(place::LoadVocabulary(file));
+  spdlog::debug("vocabulary {}: {} words, loaded in {:.1f} ms", file.string(), vocabulary->word_count(),
+                watch.ElapsedMs());
+  return std::make_unique<place::KeyFrameIndex>(std::move(vocabulary));
+}
+
+KeyFrameHooks IndexHooks(place::KeyFrameIndex* index) {
+  if (index == nullptr) return {};
+  KeyFrameHooks hooks;
+  hooks.added = [index](const KeyFrameSnapshot& keyframe) { index->Add(keyframe.id, keyframe.frame->descriptors()); };
+  hooks.culled = [index](KeyFrameId id) { index->Erase(id); };
+  return hooks;
+}
+
+}  // namespace
 
 void SystemOptions::Check() const {
   orb.Check();
@@ -16,9 +41,10 @@ SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& opti
       options_(options),
       extractor_(options.orb),
       pyramid_{options.orb.n_levels, options.orb.scale_factor},
-      tracker_(options.tracker, &map_),
+      index_(MakeKeyFrameIndex(options)),
+      tracker_(options.tracker, &map_, index_.get()),
       dynamic_(options.dynamic, camera, &map_, &tracker_, &timings_),
-      mapper_(options.mapping, &map_, &timings_) {
+      mapper_(options.mapping, &map_, &timings_, IndexHooks(index_.get())) {
   camera_.Check();
   options_.Check();
   if (!options_.sequential) mapper_.Start();
@@ -51,6 +77,12 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   watch = Stopwatch();
   const TrackingResult result = tracker_.Track(frame);
   timings_.Add("tracking", watch.ElapsedMs());
+  // Attempts on frames without features (black, covered) cost nothing and
+  // would only pull the median down.
+  if (result.relocalization_ms >= 0 && frame->size() > 0) {
+    timings_.Add("relocalization_attempt", result.relocalization_ms);
+  }
+  LogStateChange(result, timestamp);
   if (result.new_keyframe) {
     watch = Stopwatch();
     mapper_.Enqueue(result.reference_keyframe);  // blocks only while the queue is full
@@ -71,9 +103,24 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   return result;
 }
 
-void SlamSystem::MarkLost(double /*timestamp*/) {
+void SlamSystem::LogStateChange(const TrackingResult& result, double timestamp) {
+  if (result.relocalized) {
+    ++counts_.relocalizations;
+    spdlog::debug("t={:.6f}: lost -> relocalized on keyframe {} ({} inliers)", timestamp,
+                 result.relocalization_keyframe, result.inliers);
+  } else if (result.state == TrackingState::kLost && last_state_ == TrackingState::kOk) {
+    spdlog::debug("t={:.6f}: ok -> lost", timestamp);
+  } else if (result.state == TrackingState::kOk && last_state_ == TrackingState::kLost) {
+    spdlog::debug("t={:.6f}: lost -> ok on the last reference keyframe", timestamp);
+  }
+  if (result.state != TrackingState::kNotInitialized) last_state_ = result.state;
+}
+
+void SlamSystem::MarkLost(double timestamp) {
   ++counts_.frames;
   ++counts_.frames_lost;
+  if (last_state_ == TrackingState::kOk) spdlog::debug("t={:.6f}: ok -> lost (frame unreadable)", timestamp);
+  if (last_state_ != TrackingState::kNotInitialized) last_state_ = TrackingState::kLost;
 }
 
 void SlamSystem::Shutdown() {

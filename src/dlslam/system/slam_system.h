@@ -18,6 +18,7 @@
 #include "dlslam/features/orb_extractor.h"
 #include "dlslam/map/map.h"
 #include "dlslam/mapping/local_mapper.h"
+#include "dlslam/place/keyframe_index.h"
 #include "dlslam/system/dynamic_stage.h"
 #include "dlslam/tracking/tracker.h"
 #include "dlslam/util/timing.h"
@@ -31,6 +32,11 @@ struct SystemOptions {
   DynamicOptions dynamic;
   // Run local mapping inline after each keyframe instead of in its thread.
   bool sequential = false;
+  // Relocalize a lost camera against the map by bag of words (loads the
+  // vocabulary once, ~5 ms, and describes every keyframe, ~1 ms each).
+  bool relocalization = true;
+  // Vocabulary file (.dlv); "" = the shipped one (place::FindVocabulary).
+  std::string vocabulary;
 
   void Check() const;
 };
@@ -40,6 +46,7 @@ struct RunStats {
   int frames_tracked = 0;   // with a pose
   int frames_lost = 0;      // not tracked after initialisation, or unreadable
   int frames_waiting = 0;   // before initialisation
+  int relocalizations = 0;  // lost -> tracked again through relocalization
   std::size_t keyframes = 0;
   std::size_t map_points = 0;
   LocalMappingStats mapping;
@@ -84,17 +91,23 @@ class SlamSystem {
     SE3d cam_from_reference;
   };
 
+  // Logs ok -> lost -> relocalized (or ok again) at debug level (`dlslam run`
+  // logs the transitions with frame numbers) and counts relocalizations.
+  void LogStateChange(const TrackingResult& result, double timestamp);
+
   CameraIntrinsics camera_;
   SystemOptions options_;
   features::OrbExtractor extractor_;
   ScalePyramid pyramid_;
   StageTimings timings_;  // before mapper_: the mapping thread writes to it
   Map map_;
+  std::unique_ptr<place::KeyFrameIndex> index_;  // null without relocalization
   Tracker tracker_;
   DynamicStage dynamic_;
   LocalMapper mapper_;
   std::vector<FrameRecord> tracked_;
   RunStats counts_;
+  TrackingState last_state_ = TrackingState::kNotInitialized;  // for the state log
   bool shut_down_ = false;
 };
 

@@ -1,9 +1,10 @@
 #include "dlslam/tracking/tracker.h"
 
 #include <algorithm>
-#include <unordered_map>
 
+#include "dlslam/tracking/matched_pose.h"
 #include "dlslam/util/check.h"
+#include "dlslam/util/timing.h"
 
 namespace dlslam {
 
@@ -20,6 +21,7 @@ void TrackerOptions::Check() const {
   DLSLAM_CHECK_GT(max_frames_between_keyframes, 0);
   DLSLAM_CHECK_GE(min_new_points, 0);
   pose.Check();
+  relocalization.Check();
 }
 
 const char* ToString(TrackingState state) {
@@ -31,25 +33,12 @@ const char* ToString(TrackingState state) {
   return "?";
 }
 
-namespace {
 
-int CountMatches(const std::vector<MapPointId>& matches) {
-  return static_cast<int>(std::count_if(matches.begin(), matches.end(), [](MapPointId id) { return id != kNoId; }));
-}
-
-std::vector<MapPointId> MatchedIds(const std::vector<MapPointId>& matches) {
-  std::vector<MapPointId> ids;
-  for (MapPointId id : matches) {
-    if (id != kNoId) ids.push_back(id);
-  }
-  return ids;
-}
-
-}  // namespace
-
-Tracker::Tracker(const TrackerOptions& options, Map* map) : options_(options), map_(map) {
+Tracker::Tracker(const TrackerOptions& options, Map* map, const place::KeyFrameIndex* index)
+    : options_(options), map_(map) {
   options_.Check();
   DLSLAM_CHECK(map_ != nullptr);
+  if (index != nullptr) relocalizer_.emplace(options_.relocalization, map_, index);
 }
 
 TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
@@ -64,6 +53,19 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
   std::vector<MapPointId> matches;
   bool ok = false;
   if (state_ == TrackingState::kOk && velocity_) ok = TrackWithMotionModel(*frame, &pose, &matches);
+  if (!ok && state_ == TrackingState::kLost && relocalizer_) {
+    const Stopwatch watch;
+    const RelocalizationAttempt attempt = relocalizer_->Relocalize(*frame);
+    result.relocalization_ms = watch.ElapsedMs();
+    if (attempt.result) {
+      ok = true;
+      pose = attempt.result->cam_from_world;
+      matches = attempt.result->matches;
+      reference_keyframe_ = attempt.result->keyframe;
+      result.relocalized = true;
+      result.relocalization_keyframe = attempt.result->keyframe;
+    }
+  }
   if (!ok) ok = TrackReferenceKeyFrame(*frame, &pose, &matches);
   KeyFrameId reference = reference_keyframe_;
   if (ok) {
@@ -74,13 +76,16 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
   if (!ok) {
     state_ = TrackingState::kLost;
     velocity_.reset();
+    result.relocalized = false;
+    result.relocalization_keyframe = kNoId;
     result.state = state_;
     result.reference_keyframe = reference_keyframe_;
     return result;
   }
   state_ = TrackingState::kOk;
   reference_keyframe_ = reference;
-  velocity_ = last_pose_ ? std::optional<SE3d>(pose * last_pose_->Inverse()) : std::nullopt;
+  // After a relocalization the last pose is from before the loss: no motion model.
+  velocity_ = last_pose_ && !result.relocalized ? std::optional<SE3d>(pose * last_pose_->Inverse()) : std::nullopt;
   ++frames_since_keyframe_;
   last_pose_ = pose;
   last_matches_ = matches;
@@ -175,32 +180,7 @@ int Tracker::TrackLocalMap(const Frame& frame, SE3d* pose, std::vector<MapPointI
 
 int Tracker::OptimizeAndPrune(const Frame& frame, const std::vector<MapPointView>& points, SE3d* pose,
                               std::vector<MapPointId>* matches) const {
-  std::unordered_map<MapPointId, const MapPointView*> by_id;
-  for (const MapPointView& p : points) by_id[p.id] = &p;
-  std::vector<PoseObservation> observations;
-  std::vector<int> keypoint_of;
-  for (std::size_t i = 0; i < matches->size(); ++i) {
-    const auto it = by_id.find((*matches)[i]);
-    if (it == by_id.end()) {
-      (*matches)[i] = kNoId;
-      continue;
-    }
-    const FrameKeypoint& k = frame.keypoint(i);
-    PoseObservation o;
-    o.point_world = it->second->position;
-    o.pixel = k.uv;
-    o.right_u = k.right_u;
-    o.information = frame.pyramid().InverseSigma2(k.octave);
-    observations.push_back(o);
-    keypoint_of.push_back(static_cast<int>(i));
-  }
-  const PoseOptimizationResult r = OptimizePose(frame.camera(), *pose, observations, options_.pose);
-  if (r.num_inliers < 3) return 0;
-  *pose = r.cam_from_world;
-  for (std::size_t j = 0; j < observations.size(); ++j) {
-    if (!r.inliers[j]) (*matches)[keypoint_of[j]] = kNoId;
-  }
-  return r.num_inliers;
+  return dlslam::OptimizeAndPrune(frame, points, options_.pose, pose, matches);
 }
 
 bool Tracker::NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches,

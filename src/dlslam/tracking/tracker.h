@@ -8,8 +8,9 @@
 //   3. the local map (covisible keyframes' points) is projected and matched,
 //      and the pose optimised again;
 //   4. a keyframe is requested when tracking weakens.
-// A frame that cannot be tracked is reported lost; the next frames try the
-// reference keyframe again (relocalization proper is place recognition).
+// A frame that cannot be tracked is reported lost; the next frames try to
+// relocalize against the whole map (relocalizer.h, when the tracker has a
+// keyframe index), then the last reference keyframe.
 
 #include <memory>
 #include <optional>
@@ -19,6 +20,7 @@
 #include "dlslam/map/map.h"
 #include "dlslam/match/projection_matcher.h"
 #include "dlslam/optimize/pose_optimizer.h"
+#include "dlslam/tracking/relocalizer.h"
 
 namespace dlslam {
 
@@ -50,6 +52,8 @@ struct TrackerOptions {
   // all closer than close_depth, and at least this many.
   int min_new_points = 100;
   PoseOptimizerOptions pose;
+  // Used when the tracker is given a keyframe index.
+  RelocalizerOptions relocalization;
 
   void Check() const;
 };
@@ -64,11 +68,18 @@ struct TrackingResult {
   int inliers = 0;                     // after it
   bool new_keyframe = false;
   KeyFrameId reference_keyframe = kNoId;
+  // Lost before, tracked again through relocalization against this keyframe.
+  bool relocalized = false;
+  KeyFrameId relocalization_keyframe = kNoId;
+  // Time spent in relocalization for this frame [ms]; < 0: not attempted.
+  double relocalization_ms = -1.0;
 };
 
 class Tracker {
  public:
-  Tracker(const TrackerOptions& options, Map* map);
+  // With `index` (outlives the tracker; may be filled by another thread) a
+  // lost tracker relocalizes; without, it only retries its reference keyframe.
+  Tracker(const TrackerOptions& options, Map* map, const place::KeyFrameIndex* index = nullptr);
 
   // Tracks one frame. The frame's ignored keypoints are never matched.
   TrackingResult Track(const std::shared_ptr<const Frame>& frame);
@@ -101,6 +112,7 @@ class Tracker {
 
   TrackerOptions options_;
   Map* map_;
+  std::optional<Relocalizer> relocalizer_;
   TrackingState state_ = TrackingState::kNotInitialized;
   // The last tracked frame: its pose, matched points and the motion into it.
   std::optional<SE3d> last_pose_;
