@@ -3,6 +3,7 @@
 #include <cmath>
 #include <unordered_set>
 
+#include "dlslam/match/point_visibility.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam {
@@ -24,19 +25,15 @@ std::vector<FuseCandidate> SearchForFusion(const Frame& frame, const SE3d& cam_f
   const std::unordered_set<MapPointId> seen(keyframe_points.begin(), keyframe_points.end());
   const CameraIntrinsics& cam = frame.camera();
   const ScalePyramid& pyr = frame.pyramid();
-  const Eigen::Vector3d centre = cam_from_world.Inverse().translation();
-  const double min_cos = std::cos(options.max_view_angle_deg * 3.14159265358979323846 / 180.0);
+  const PointVisibility visibility(cam, cam_from_world, options.max_view_angle_deg);
   std::vector<FuseCandidate> out;
   for (const MapPointView& p : points) {
     if (seen.count(p.id)) continue;
-    const Eigen::Vector3d pc = cam_from_world * p.position;
-    if (pc.z() <= 0) continue;
-    const Eigen::Vector2d uv = cam.Project(pc);
-    if (uv.x() < 0 || uv.y() < 0 || uv.x() >= cam.width || uv.y() >= cam.height) continue;
-    const Eigen::Vector3d ray = p.position - centre;
-    const double dist = ray.norm();
-    if (dist < 0.8 * p.min_distance || dist > 1.2 * p.max_distance) continue;
-    if (ray.dot(p.normal) < min_cos * dist) continue;
+    const std::optional<VisibleProjection> visible = visibility.Project(p);
+    if (!visible) continue;
+    const Eigen::Vector3d& pc = visible->point_cam;
+    const Eigen::Vector2d& uv = visible->uv;
+    const double dist = visible->distance;
     const int octave = PredictOctave(dist, p.max_distance, pyr);
     const double right_u = uv.x() - cam.bf / pc.z();
     int best = options.max_distance + 1, best_idx = -1;

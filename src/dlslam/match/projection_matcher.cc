@@ -1,5 +1,7 @@
 #include "dlslam/match/projection_matcher.h"
 
+#include "dlslam/match/point_visibility.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -15,12 +17,6 @@ void ProjectionMatchOptions::Check() const {
   DLSLAM_CHECK(max_view_angle_deg > 0 && max_view_angle_deg <= 180);
 }
 
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
-
 ProjectionMatchStats SearchByProjection(const Frame& frame, const SE3d& cam_from_world,
                                         const std::vector<MapPointView>& points,
                                         const ProjectionMatchOptions& options,
@@ -30,20 +26,16 @@ ProjectionMatchStats SearchByProjection(const Frame& frame, const SE3d& cam_from
   DLSLAM_CHECK_EQ(matches->size(), frame.size());
   const CameraIntrinsics& cam = frame.camera();
   const ScalePyramid& pyr = frame.pyramid();
-  const Eigen::Vector3d centre = cam_from_world.Inverse().translation();
-  const double min_cos = std::cos(options.max_view_angle_deg * kPi / 180.0);
+  const PointVisibility visibility(cam, cam_from_world, options.max_view_angle_deg);
   // Best candidate per keypoint, so two points never take the same keypoint.
   std::vector<int> best_distance(frame.size(), 256);
   ProjectionMatchStats stats;
   for (const MapPointView& p : points) {
-    const Eigen::Vector3d pc = cam_from_world * p.position;
-    if (pc.z() <= 0) continue;
-    const Eigen::Vector2d uv = cam.Project(pc);
-    if (uv.x() < 0 || uv.y() < 0 || uv.x() >= cam.width || uv.y() >= cam.height) continue;
-    const Eigen::Vector3d ray = p.position - centre;
-    const double dist = ray.norm();
-    if (dist < 0.8 * p.min_distance || dist > 1.2 * p.max_distance) continue;
-    if (ray.dot(p.normal) < min_cos * dist) continue;
+    const std::optional<VisibleProjection> seen = visibility.Project(p);
+    if (!seen) continue;
+    const Eigen::Vector3d& pc = seen->point_cam;
+    const Eigen::Vector2d& uv = seen->uv;
+    const double dist = seen->distance;
     ++stats.projected;
     stats.visible.push_back(p.id);
     const int octave = PredictOctave(dist, p.max_distance, pyr);
