@@ -26,10 +26,11 @@ void NormalizeL1(BowVector& vector) {
   for (BowEntry& entry : vector) entry.weight = static_cast<WordWeight>(entry.weight / sum);
 }
 
-double ScoreL1(const BowVector& a, const BowVector& b) {
-  // 1 - 0.5 |a - b|_1 = 0.5 * sum over shared words of (|a_i| + |b_i| - |a_i - b_i|)
-  // for vectors with |a|_1 = |b|_1 = 1 (words in only one vector cancel).
-  double shared = 0.0;
+namespace {
+
+// Calls shared(entry_a, entry_b) for every word in both sorted vectors.
+template <typename Shared>
+void ForEachSharedWord(const BowVector& a, const BowVector& b, Shared shared) {
   auto ia = a.begin();
   auto ib = b.begin();
   while (ia != a.end() && ib != b.end()) {
@@ -38,30 +39,29 @@ double ScoreL1(const BowVector& a, const BowVector& b) {
     } else if (ib->word < ia->word) {
       ++ib;
     } else {
-      const double va = ia->weight, vb = ib->weight;
-      shared += std::abs(va) + std::abs(vb) - std::abs(va - vb);
+      shared(*ia, *ib);
       ++ia;
       ++ib;
     }
   }
+}
+
+}  // namespace
+
+double ScoreL1(const BowVector& a, const BowVector& b) {
+  // 1 - 0.5 |a - b|_1 = 0.5 * sum over shared words of (|a_i| + |b_i| - |a_i - b_i|)
+  // for vectors with |a|_1 = |b|_1 = 1 (words in only one vector cancel).
+  double shared = 0.0;
+  ForEachSharedWord(a, b, [&](const BowEntry& ea, const BowEntry& eb) {
+    const double va = ea.weight, vb = eb.weight;
+    shared += std::abs(va) + std::abs(vb) - std::abs(va - vb);
+  });
   return std::clamp(0.5 * shared, 0.0, 1.0);
 }
 
 int CommonWords(const BowVector& a, const BowVector& b) {
   int common = 0;
-  auto ia = a.begin();
-  auto ib = b.begin();
-  while (ia != a.end() && ib != b.end()) {
-    if (ia->word < ib->word) {
-      ++ia;
-    } else if (ib->word < ia->word) {
-      ++ib;
-    } else {
-      ++common;
-      ++ia;
-      ++ib;
-    }
-  }
+  ForEachSharedWord(a, b, [&](const BowEntry&, const BowEntry&) { ++common; });
   return common;
 }
 
