@@ -13,17 +13,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-cv::Mat LabelsWhere(const cv::Mat& labels, const std::function<bool(std::uint8_t)>& keep) {
-  DLSLAM_CHECK_EQ(labels.type(), CV_8UC1, "label images are 8-bit single-channel");
-  cv::Mat out(labels.size(), CV_8UC1);
-  for (int y = 0; y < labels.rows; ++y) {
-    const uchar* in = labels.ptr<uchar>(y);
-    uchar* o = out.ptr<uchar>(y);
-    for (int x = 0; x < labels.cols; ++x) o[x] = keep(in[x]) ? 255 : 0;
-  }
-  return out;
-}
-
 class GroundTruthPriorSource : public SemanticPriorSource {
  public:
   SemanticPrior Prior(std::size_t /*index*/, const io::RgbdFrame& frame) override {
@@ -117,11 +106,17 @@ std::unique_ptr<SemanticPriorSource> MakeSemanticPriorSource(const std::string& 
 }
 
 cv::Mat MovingTruthFromLabels(const cv::Mat& labels) {
-  return LabelsWhere(labels, [](std::uint8_t v) { return synth::MaskMoving(v); });
+  DLSLAM_CHECK_EQ(labels.type(), CV_8UC1, "label images are 8-bit single-channel");
+  cv::Mat moving;
+  cv::bitwise_and(labels, cv::Scalar(synth::kMaskMovingBit), moving);
+  return moving != 0;  // 255 where the moving bit is set
 }
 
 cv::Mat ClassMaskFromLabels(const cv::Mat& labels, int class_id) {
-  return LabelsWhere(labels, [class_id](std::uint8_t v) { return synth::MaskClass(v) == class_id; });
+  DLSLAM_CHECK_EQ(labels.type(), CV_8UC1, "label images are 8-bit single-channel");
+  cv::Mat classes;
+  cv::bitwise_and(labels, cv::Scalar(0x7F), classes);  // drop the moving bit (synth::MaskClass)
+  return classes == class_id;
 }
 
 }  // namespace dlslam::app
