@@ -47,6 +47,7 @@ RunOutcome RunSequence(const RunArgs& args) {
   SystemOptions options;
   options.sequential = args.sequential;
   options.relocalization = !args.no_relocalization;
+  options.loop_closing = !args.no_loop;
   options.vocabulary = args.vocabulary;
   options.mapping.bundle.solver = ParseBundleSolver(args.bundle_solver);
   options.dynamic.mode = ParseDynamicMode(args.mode);
@@ -117,9 +118,9 @@ RunOutcome RunSequence(const RunArgs& args) {
   std::optional<RunEvaluation> evaluation;
   if (sequence.ground_truth()) evaluation = EvaluateRun(*sequence.ground_truth(), trajectory);
   const auto& t = stats.timing_ms;
-  spdlog::info("tracked {}/{} frames, lost {}, {} relocalizations, {} keyframes, {} map points",
-               stats.frames_tracked, stats.frames, stats.frames_lost, stats.relocalizations, stats.keyframes,
-               stats.map_points);
+  spdlog::info("tracked {}/{} frames, lost {}, {} relocalizations, {} loops closed, {} keyframes, {} map points",
+               stats.frames_tracked, stats.frames, stats.frames_lost, stats.relocalizations, stats.loop.loops_closed,
+               stats.keyframes, stats.map_points);
   if (t.count("frame_total")) {
     spdlog::info("time per frame: median {:.1f} ms, p95 {:.1f} ms (ORB {:.1f} ms, tracking {:.1f} ms)",
                  t.at("frame_total").median, t.at("frame_total").p95, t.at("orb_extraction").median,
@@ -174,10 +175,10 @@ void AddRunCommand(CLI::App& app) {
       ->check(CLI::Range(1, 100));
   cmd->add_flag("--sequential", args->sequential,
                 "Run local mapping inline: deterministic, reproducible bit for bit");
-  cmd->add_flag("--no-relocalization", args->no_relocalization,
-                "Do not relocalize a lost camera (and do not load the vocabulary)");
+  cmd->add_flag("--no-relocalization", args->no_relocalization, "Do not relocalize a lost camera");
+  cmd->add_flag("--no-loop", args->no_loop, "Do not close loops (for comparisons)");
   cmd->add_option("--vocabulary", args->vocabulary,
-                  "Bag-of-words vocabulary (.dlv) for relocalization; default: the shipped one");
+                  "Bag-of-words vocabulary (.dlv) for relocalization and loop closing; default: the shipped one");
   cmd->add_option("--bundle-solver", args->bundle_solver,
                   "Local bundle adjustment: lm (our sparse Levenberg-Marquardt) or ceres")
       ->capture_default_str()

@@ -45,14 +45,41 @@ nlohmann::ordered_json DynamicReport(const RunStats& stats) {
   return j;
 }
 
+namespace {
+
+nlohmann::ordered_json LoopReport(const LoopClosingStats& loop) {
+  nlohmann::ordered_json j;
+  j["keyframes_checked"] = loop.keyframes_checked;
+  j["keyframes_skipped"] = loop.keyframes_skipped;
+  j["consistent_candidates"] = loop.consistent_candidates;
+  j["rejected"] = loop.loops_rejected;
+  j["global_bundles_completed"] = loop.global_bundles_completed;
+  j["global_bundles_aborted"] = loop.global_bundles_aborted;
+  nlohmann::ordered_json loops = nlohmann::ordered_json::array();
+  for (const LoopEvent& e : loop.loops) {
+    loops.push_back({{"keyframe", e.current},
+                     {"loop_keyframe", e.loop},
+                     {"timestamp", e.current_timestamp},
+                     {"loop_timestamp", e.loop_timestamp},
+                     {"inliers", e.inliers},
+                     {"correction_m", e.correction.correction_m},
+                     {"correction_deg", e.correction.correction_deg},
+                     {"keyframes_moved", e.correction.keyframes_moved},
+                     {"points_fused", e.correction.points_fused}});
+  }
+  j["loops"] = loops;
+  return j;
+}
+
+}  // namespace
+
 nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<RunEvaluation>& evaluation) {
   nlohmann::ordered_json j;
   j["frames"] = stats.frames;
   j["frames_tracked"] = stats.frames_tracked;
   j["frames_lost"] = stats.frames_lost;
   j["relocalizations"] = stats.relocalizations;
-  // Loop closing (issue 4, second part) does not exist yet: always 0 until it does.
-  j["loops_closed"] = 0;
+  j["loops_closed"] = stats.loop.loops_closed;
   j["frames_waiting"] = stats.frames_waiting;
   j["keyframes"] = stats.keyframes;
   j["map_points"] = stats.map_points;
@@ -62,6 +89,7 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
                         {"points_fused", stats.mapping.points_fused},
                         {"keyframes_culled", stats.mapping.keyframes_culled},
                         {"bundle_outliers", stats.mapping.bundle_outliers}};
+  j["loop_closing"] = LoopReport(stats.loop);
   nlohmann::ordered_json timing;
   for (const auto& [stage, s] : stats.timing_ms) {
     timing[stage] = {{"median", s.median}, {"p95", s.p95}, {"max", s.max}, {"count", s.count}};

@@ -23,6 +23,7 @@ struct RunArgs {
   int segment_every = 1;                   // segment every k-th frame
   bool sequential = false;
   bool no_relocalization = false;  // --no-relocalization
+  bool no_loop = false;            // --no-loop
   std::string vocabulary;          // --vocabulary; "" = the shipped one
   std::string bundle_solver = "lm";  // local bundle adjustment: "lm" or "ceres"
   std::size_t max_frames = 0;

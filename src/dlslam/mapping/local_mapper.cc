@@ -32,10 +32,20 @@ void LocalMapper::Start() {
 
 void LocalMapper::Enqueue(KeyFrameId keyframe) {
   if (!thread_.joinable()) {
-    Process(keyframe);
+    ProcessAndHandOver(keyframe);
     return;
   }
   queue_.Push(keyframe);
+}
+
+std::unique_lock<std::mutex> LocalMapper::Pause() { return std::unique_lock(pause_mutex_); }
+
+void LocalMapper::ProcessAndHandOver(KeyFrameId keyframe) {
+  {
+    const std::lock_guard lock(pause_mutex_);
+    Process(keyframe);
+  }
+  if (hooks_.processed) hooks_.processed(keyframe);
 }
 
 void LocalMapper::Stop() {
@@ -46,7 +56,7 @@ void LocalMapper::Stop() {
 void LocalMapper::Run() {
   while (const std::optional<KeyFrameId> keyframe = queue_.Pop()) {
     try {
-      Process(*keyframe);
+      ProcessAndHandOver(*keyframe);
     } catch (const std::exception& e) {
       // A failed refinement must not take tracking down: the keyframe stays
       // as tracking made it.

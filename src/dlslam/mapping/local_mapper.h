@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <functional>
+#include <mutex>
 #include <thread>
 
 #include "dlslam/map/map.h"
@@ -59,6 +60,9 @@ struct LocalMappingStats {
 struct KeyFrameHooks {
   std::function<void(const KeyFrameSnapshot&)> added;
   std::function<void(KeyFrameId)> culled;
+  // After a keyframe is finished, outside the pause lock (loop closing
+  // hands itself the keyframe here, and may pause the mapper inline).
+  std::function<void(KeyFrameId)> processed;
 };
 
 class LocalMapper {
@@ -75,10 +79,16 @@ class LocalMapper {
   void Enqueue(KeyFrameId keyframe);
   // Finishes the queued keyframes, then joins the thread.
   void Stop();
+  // Holds local mapping between two keyframes for as long as the returned
+  // lock lives (waits for the keyframe in progress): loop closing moves the
+  // map meanwhile. Tracking is not held; keyframes queue up.
+  [[nodiscard]] std::unique_lock<std::mutex> Pause();
 
   LocalMappingStats stats() const;
 
  private:
+  // Process under the pause lock, then the `processed` hook.
+  void ProcessAndHandOver(KeyFrameId keyframe);
   void Process(KeyFrameId keyframe);
   void Run();
 
@@ -88,6 +98,7 @@ class LocalMapper {
   KeyFrameHooks hooks_;
   BoundedQueue<KeyFrameId> queue_;
   std::thread thread_;
+  std::mutex pause_mutex_;  // held while a keyframe is processed
   mutable std::mutex stats_mutex_;
   LocalMappingStats stats_;
 };

@@ -10,7 +10,7 @@ namespace dlslam {
 namespace {
 
 std::unique_ptr<place::KeyFrameIndex> MakeKeyFrameIndex(const SystemOptions& options) {
-  if (!options.relocalization) return nullptr;
+  if (!options.relocalization && !options.loop_closing) return nullptr;
   const std::filesystem::path file = place::FindVocabulary(options.vocabulary);
   const Stopwatch watch;
   auto vocabulary = std::make_shared<const place::Vocabulary>(place::LoadVocabulary(file));
@@ -19,20 +19,26 @@ std::unique_ptr<place::KeyFrameIndex> MakeKeyFrameIndex(const SystemOptions& opt
   return std::make_unique<place::KeyFrameIndex>(std::move(vocabulary));
 }
 
-KeyFrameHooks IndexHooks(place::KeyFrameIndex* index) {
-  if (index == nullptr) return {};
+}  // namespace
+
+KeyFrameHooks SlamSystem::MappingHooks() {
   KeyFrameHooks hooks;
-  hooks.added = [index](const KeyFrameSnapshot& keyframe) { index->Add(keyframe.id, keyframe.frame->descriptors()); };
-  hooks.culled = [index](KeyFrameId id) { index->Erase(id); };
+  if (place::KeyFrameIndex* index = index_.get()) {
+    hooks.added = [index](const KeyFrameSnapshot& keyframe) { index->Add(keyframe.id, keyframe.frame->descriptors()); };
+    hooks.culled = [index](KeyFrameId id) { index->Erase(id); };
+  }
+  if (options_.loop_closing) {
+    // loop_closer_ is made after the mapper; keyframes only flow once both exist.
+    hooks.processed = [this](KeyFrameId id) { loop_closer_->Enqueue(id); };
+  }
   return hooks;
 }
-
-}  // namespace
 
 void SystemOptions::Check() const {
   orb.Check();
   tracker.Check();
   mapping.Check();
+  loop.Check();
   dynamic.Check();
 }
 
@@ -42,12 +48,17 @@ SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& opti
       extractor_(options.orb),
       pyramid_{options.orb.n_levels, options.orb.scale_factor},
       index_(MakeKeyFrameIndex(options)),
-      tracker_(options.tracker, &map_, index_.get()),
+      tracker_(options.tracker, &map_, options.relocalization ? index_.get() : nullptr),
       dynamic_(options.dynamic, camera, &map_, &tracker_, &timings_),
-      mapper_(options.mapping, &map_, &timings_, IndexHooks(index_.get())) {
+      mapper_(options.mapping, &map_, &timings_, MappingHooks()) {
   camera_.Check();
   options_.Check();
-  if (!options_.sequential) mapper_.Start();
+  if (options_.loop_closing) {
+    loop_closer_ = std::make_unique<LoopCloser>(options_.loop, &map_, index_.get(), &mapper_, &timings_);
+  }
+  if (options_.sequential) return;
+  mapper_.Start();
+  if (loop_closer_) loop_closer_->Start();
 }
 
 SlamSystem::~SlamSystem() { Shutdown(); }
@@ -126,6 +137,7 @@ void SlamSystem::MarkLost(double timestamp) {
 void SlamSystem::Shutdown() {
   if (shut_down_) return;
   mapper_.Stop();
+  if (loop_closer_) loop_closer_->Stop();
   shut_down_ = true;
 }
 
@@ -151,6 +163,7 @@ RunStats SlamSystem::Stats() const {
   s.keyframes = map_.NumKeyFrames();
   s.map_points = map_.NumMapPoints();
   s.mapping = mapper_.stats();
+  if (loop_closer_) s.loop = loop_closer_->stats();
   s.dynamic = dynamic_.stats();
   s.timing_ms = timings_.Summaries();
   return s;

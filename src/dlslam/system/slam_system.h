@@ -16,6 +16,7 @@
 #include "dlslam/data/camera.h"
 #include "dlslam/data/trajectory.h"
 #include "dlslam/features/orb_extractor.h"
+#include "dlslam/loop/loop_closer.h"
 #include "dlslam/map/map.h"
 #include "dlslam/mapping/local_mapper.h"
 #include "dlslam/place/keyframe_index.h"
@@ -35,6 +36,10 @@ struct SystemOptions {
   // Relocalize a lost camera against the map by bag of words (loads the
   // vocabulary once, ~5 ms, and describes every keyframe, ~1 ms each).
   bool relocalization = true;
+  // Close loops (bag-of-words detection, pose graph, global bundle
+  // adjustment in the background); shares the vocabulary.
+  bool loop_closing = true;
+  LoopClosingOptions loop;
   // Vocabulary file (.dlv); "" = the shipped one (place::FindVocabulary).
   std::string vocabulary;
 
@@ -50,6 +55,7 @@ struct RunStats {
   std::size_t keyframes = 0;
   std::size_t map_points = 0;
   LocalMappingStats mapping;
+  LoopClosingStats loop;
   DynamicStats dynamic;
   std::map<std::string, TimingSummary> timing_ms;  // per stage
 };
@@ -75,7 +81,8 @@ class SlamSystem {
                            const cv::Mat& semantic_prior = cv::Mat());
   // A frame that could not be read counts as lost.
   void MarkLost(double timestamp);
-  // Finishes local mapping. Called by the destructor too.
+  // Finishes local mapping, then loop closing (and a running global bundle
+  // adjustment). Called by the destructor too.
   void Shutdown();
 
   // world_from_cam of every tracked frame, from its reference keyframe's
@@ -94,6 +101,8 @@ class SlamSystem {
   // Logs ok -> lost -> relocalized (or ok again) at debug level (`dlslam run`
   // logs the transitions with frame numbers) and counts relocalizations.
   void LogStateChange(const TrackingResult& result, double timestamp);
+  // How the keyframe index and loop closing follow local mapping.
+  KeyFrameHooks MappingHooks();
 
   CameraIntrinsics camera_;
   SystemOptions options_;
@@ -101,10 +110,11 @@ class SlamSystem {
   ScalePyramid pyramid_;
   StageTimings timings_;  // before mapper_: the mapping thread writes to it
   Map map_;
-  std::unique_ptr<place::KeyFrameIndex> index_;  // null without relocalization
+  std::unique_ptr<place::KeyFrameIndex> index_;  // null without relocalization and loop closing
   Tracker tracker_;
   DynamicStage dynamic_;
   LocalMapper mapper_;
+  std::unique_ptr<LoopCloser> loop_closer_;  // null without loop closing
   std::vector<FrameRecord> tracked_;
   RunStats counts_;
   TrackingState last_state_ = TrackingState::kNotInitialized;  // for the state log

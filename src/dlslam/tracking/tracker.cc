@@ -49,6 +49,9 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
     result.state = state_;
     return result;
   }
+  const std::uint64_t generation = map_->Generation();
+  if (last_pose_) last_pose_ = LastPose();
+  last_pose_generation_ = generation;
   SE3d pose;
   std::vector<MapPointId> matches;
   bool ok = false;
@@ -87,9 +90,12 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
   // After a relocalization the last pose is from before the loss: no motion model.
   velocity_ = last_pose_ && !result.relocalized ? std::optional<SE3d>(pose * last_pose_->Inverse()) : std::nullopt;
   ++frames_since_keyframe_;
-  last_pose_ = pose;
+  RememberPose(pose, reference, generation);
   last_matches_ = matches;
-  if (NeedNewKeyFrame(*frame, matches, reference)) {
+  // A map moved by loop closing during this call: the pose is from before,
+  // so it must not become a keyframe.
+  const bool map_moved = map_->Generation() != generation;
+  if (!map_moved && NeedNewKeyFrame(*frame, matches, reference)) {
     reference_keyframe_ = InsertKeyFrame(frame, pose, matches);
     result.new_keyframe = true;
   }
@@ -108,7 +114,7 @@ bool Tracker::Initialize(const std::shared_ptr<const Frame>& frame, TrackingResu
   // initialisation); later ones only the close ones.
   reference_keyframe_ =
       InsertKeyFrame(frame, pose, std::vector<MapPointId>(frame->size(), kNoId), /*all_depth_points=*/true);
-  last_pose_ = pose;
+  RememberPose(pose, reference_keyframe_, map_->Generation());
   velocity_.reset();
   result->cam_from_world = pose;
   result->new_keyframe = true;
@@ -120,7 +126,8 @@ bool Tracker::Initialize(const std::shared_ptr<const Frame>& frame, TrackingResu
 std::optional<SE3d> Tracker::EstimatePose(const Frame& frame) const {
   if (state_ != TrackingState::kOk || !last_pose_) return std::nullopt;
   // Right after a keyframe or a relocation there is no velocity: assume none.
-  const SE3d guess = velocity_ ? *velocity_ * *last_pose_ : *last_pose_;
+  const SE3d last = LastPose();
+  const SE3d guess = velocity_ ? *velocity_ * last : last;
   SE3d pose;
   std::vector<MapPointId> matches;
   if (TrackWithMotionModel(frame, &pose, &matches)) return pose;
@@ -128,7 +135,8 @@ std::optional<SE3d> Tracker::EstimatePose(const Frame& frame) const {
 }
 
 bool Tracker::TrackWithMotionModel(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches) const {
-  *pose = velocity_ ? *velocity_ * *last_pose_ : *last_pose_;
+  const SE3d last = LastPose();
+  *pose = velocity_ ? *velocity_ * last : last;
   const std::vector<MapPointView> points = map_->GetPoints(MatchedIds(last_matches_));
   ProjectionMatchOptions search;
   search.radius = options_.motion_search_radius;
@@ -149,7 +157,7 @@ bool Tracker::TrackReferenceKeyFrame(const Frame& frame, SE3d* pose, std::vector
   if (!ref) return false;
   *matches = MatchToKeyFrame(frame, *ref->frame, ref->points);
   if (CountMatches(*matches) < options_.min_reference_inliers) return false;
-  *pose = last_pose_ ? *last_pose_ : ref->cam_from_world;
+  *pose = last_pose_ ? LastPose() : ref->cam_from_world;
   const std::vector<MapPointView> points = map_->GetPoints(MatchedIds(*matches));
   return OptimizeAndPrune(frame, points, pose, matches) >= options_.min_reference_inliers;
 }
@@ -181,6 +189,22 @@ int Tracker::TrackLocalMap(const Frame& frame, SE3d* pose, std::vector<MapPointI
 int Tracker::OptimizeAndPrune(const Frame& frame, const std::vector<MapPointView>& points, SE3d* pose,
                               std::vector<MapPointId>* matches) const {
   return dlslam::OptimizeAndPrune(frame, points, options_.pose, pose, matches);
+}
+
+SE3d Tracker::LastPose() const {
+  DLSLAM_CHECK(last_pose_.has_value());
+  if (map_->Generation() == last_pose_generation_ || !last_from_reference_) return *last_pose_;
+  const auto reference_now = map_->ResolveCamFromWorld(last_pose_reference_);
+  if (!reference_now) return *last_pose_;
+  return *last_from_reference_ * *reference_now;
+}
+
+void Tracker::RememberPose(const SE3d& pose, KeyFrameId reference, std::uint64_t generation) {
+  last_pose_ = pose;
+  last_pose_generation_ = generation;
+  last_pose_reference_ = reference;
+  const auto reference_pose = map_->ResolveCamFromWorld(reference);
+  last_from_reference_ = reference_pose ? std::optional<SE3d>(pose * reference_pose->Inverse()) : std::nullopt;
 }
 
 bool Tracker::NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches,

@@ -106,6 +106,12 @@ class Tracker {
   // Optimises the pose on the matches; drops outliers; returns inliers.
   int OptimizeAndPrune(const Frame& frame, const std::vector<MapPointView>& points, SE3d* pose,
                        std::vector<MapPointId>* matches) const;
+  // The last tracked frame's pose in the map as it is now: loop closing may
+  // have moved the map since (Map::Generation), and the frame moves with the
+  // keyframe it was tracked against.
+  SE3d LastPose() const;
+  // `generation`: the map's when the pose was computed.
+  void RememberPose(const SE3d& pose, KeyFrameId reference, std::uint64_t generation);
   bool NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches, KeyFrameId reference) const;
   KeyFrameId InsertKeyFrame(const std::shared_ptr<const Frame>& frame, const SE3d& pose,
                             const std::vector<MapPointId>& matches, bool all_depth_points = false);
@@ -116,6 +122,9 @@ class Tracker {
   TrackingState state_ = TrackingState::kNotInitialized;
   // The last tracked frame: its pose, matched points and the motion into it.
   std::optional<SE3d> last_pose_;
+  std::uint64_t last_pose_generation_ = 0;  // Map::Generation() when last_pose_ was set
+  KeyFrameId last_pose_reference_ = kNoId;  // the keyframe it was tracked against
+  std::optional<SE3d> last_from_reference_;  // cam_last_from_cam_reference then
   std::optional<SE3d> velocity_;  // cam_from_world_last * world_from_cam_before_last
   std::vector<MapPointId> last_matches_;
   KeyFrameId reference_keyframe_ = kNoId;
