@@ -92,7 +92,9 @@ void Map::RefreshPoint(MapPoint& p) const {
 
 void Map::UpdateConnections(KeyFrameId keyframe, int min_shared) {
   std::lock_guard lock(mutex_);
-  KeyFrame& kf = keyframes_.at(keyframe);
+  const auto kf_it = keyframes_.find(keyframe);
+  if (kf_it == keyframes_.end()) return;  // culled since the caller looked
+  KeyFrame& kf = kf_it->second;
   std::map<KeyFrameId, int> counts;
   for (MapPointId pid : kf.points) {
     if (pid == kNoId) continue;

@@ -4,6 +4,7 @@
 // short, and readers get copies (views), so no caller ever holds the lock
 // across heavy work.
 
+#include <cstdint>
 #include <mutex>
 #include <unordered_map>
 #include <unordered_set>
@@ -38,6 +39,24 @@ struct LocalBundle {
   std::vector<int> keypoints;         // per problem.observations: keypoint index
 };
 
+// ORB-SLAM's essential graph as the input of a pose graph: spanning-tree
+// edges, strong covisibility edges and loop edges, measured at the current
+// poses. Node i stands for ids[i].
+struct EssentialGraph {
+  std::vector<KeyFrameId> ids;       // sorted
+  std::vector<SE3d> cam_from_world;  // per node, its current pose
+  struct Edge {
+    enum class Kind { kTree, kCovisibility, kLoop };
+    int from = 0;  // node index, from < to
+    int to = 0;
+    SE3d to_from_from;  // cam_from_world[to] * cam_from_world[from].Inverse()
+    Kind kind = Kind::kCovisibility;
+  };
+  // Each undirected pair at most once, sorted by (from, to); a pair that is
+  // several kinds at once is kLoop before kTree before kCovisibility.
+  std::vector<Edge> edges;
+};
+
 struct KeyFramePose {
   KeyFrameId id = kNoId;
   double timestamp = 0.0;
@@ -60,6 +79,7 @@ class Map {
   bool AddObservation(MapPointId point, KeyFrameId keyframe, int keypoint);
   // Recomputes the covisibility edges of `keyframe` (min_shared points make an
   // edge; the best neighbour always does) and its spanning-tree parent.
+  // No-op for a keyframe that is gone (culled meanwhile).
   void UpdateConnections(KeyFrameId keyframe, int min_shared = 15);
 
   // The local map of a frame whose keypoints matched `matched_points`:
@@ -102,8 +122,8 @@ class Map {
   // (found / visible < min_found_ratio) or that too few keyframes observe
   // once two keyframes have passed. Returns how many were removed.
   int CullRecentPoints(KeyFrameId current, int min_observations = 3, double min_found_ratio = 0.25);
-  // Removes covisible neighbours of `current` (never keyframe 0, `current`
-  // or a newer one) whose close points are nearly all (redundancy) seen by at
+  // Removes covisible neighbours of `current` (never keyframe 0, one with a
+  // loop edge, `current` or a newer one) whose close points are nearly all (redundancy) seen by at
   // least min_views other keyframes at the same or a finer scale. Returns them.
   std::vector<KeyFrameId> CullRedundantKeyFrames(KeyFrameId current, double close_depth, double redundancy = 0.9,
                                                  int min_views = 3);
@@ -123,6 +143,42 @@ class Map {
   // nothing changed (point or keyframe gone, or the keyframe already sees it).
   bool FusePoint(MapPointId point, KeyFrameId keyframe, int keypoint);
 
+  // --- Loop closing (map_loop.cc) ---
+  // Joins a and b by a loop edge (both directions). Keyframes with a loop
+  // edge are never culled. No-op if either is gone or a == b.
+  void AddLoopEdge(KeyFrameId a, KeyFrameId b);
+  // The essential graph: parent edges, covisibility edges of at least
+  // min_covisibility shared points, loop edges.
+  EssentialGraph GetEssentialGraph(int min_covisibility = 100) const;
+  // Sets the poses of the keyframes in `corrected` (cam_from_world; ids that
+  // are gone are skipped). Keyframes not in `corrected` that are newer than
+  // every keyframe in it (tracking kept adding them meanwhile) follow their
+  // spanning-tree parent rigidly (recursively). Every map point moves
+  // rigidly with its reference keyframe (p' = world_from_cam_new *
+  // cam_from_world_old * p) when that keyframe moved; a point whose
+  // reference keyframe is gone uses the first observing keyframe that moved.
+  // Culled keyframes are stored relative to their parent and so follow it.
+  // A keyframe moved when its pose changed. Bumps Generation() unless
+  // `corrected` names no existing keyframe. Returns the number of keyframes
+  // moved.
+  int ApplyCorrectedPoses(const std::unordered_map<KeyFrameId, SE3d>& corrected);
+  // The whole map as a bundle: every keyframe that sees a point of it, free
+  // except keyframe 0 (fixed; if it sees none, the oldest keyframe in the
+  // bundle), and every point with at least 2 observations. Observations as
+  // in BuildLocalBundle.
+  LocalBundle BuildGlobalBundle() const;
+  // Writes back the bundle's free poses and its points, drops the outlier
+  // observations (as ApplyLocalBundle); keyframes and points not in the
+  // bundle (newer ones, points with one observation) move with their parent
+  // / reference keyframe as in ApplyCorrectedPoses. Bumps Generation().
+  void ApplyGlobalBundle(const LocalBundle& bundle, const std::vector<bool>& outlier);
+  // Public ReplacePointLocked: `from`'s observations move to `into` and
+  // `from` is erased. False when either is gone or from == into.
+  bool ReplacePoint(MapPointId from, MapPointId into);
+  // Counts the corrections (ApplyCorrectedPoses, ApplyGlobalBundle) so that
+  // tracking notices that the map moved under it.
+  std::uint64_t Generation() const;
+
  private:
   void RefreshPoint(MapPoint& point) const;  // descriptor, normal, distances
   // These expect the lock to be held.
@@ -132,6 +188,26 @@ class Map {
   // Moves the observations of `from` to `into` (dropping those of keyframes
   // that already see `into`) and erases `from`.
   void ReplacePointLocked(MapPointId from, MapPointId into);
+  // Bundle building shared by the local and the global bundle: adds a pose
+  // (fixed if asked or keyframe 0) unless present; adds the observations of
+  // every point in bundle->point_ids, adding their observers as poses
+  // (fixed if fix_new_poses).
+  void AddBundlePoseLocked(KeyFrameId keyframe, bool fixed, LocalBundle* bundle,
+                           std::unordered_map<KeyFrameId, int>* pose_index) const;
+  void AddBundleObservationsLocked(bool fix_new_poses, LocalBundle* bundle,
+                                   std::unordered_map<KeyFrameId, int>* pose_index) const;
+  // ApplyLocalBundle's work: drops outliers, writes free poses and points.
+  void ApplyBundleLocked(const LocalBundle& bundle, const std::vector<bool>& outlier);
+  // Completes a correction whose `moved` keyframes already hold their new
+  // poses (`old_cam_from_world`: every keyframe's pose before it): each of
+  // `followers` whose parent moved takes its parent's motion (recursively),
+  // points not in `placed_points` move with their reference keyframe, and
+  // points that moved or whose observers did are refreshed. Returns the
+  // number of keyframes moved, followers included.
+  int PropagateCorrectionLocked(const std::unordered_map<KeyFrameId, SE3d>& old_cam_from_world,
+                                std::unordered_set<KeyFrameId> moved,
+                                const std::unordered_set<KeyFrameId>& followers,
+                                const std::unordered_set<MapPointId>& placed_points);
 
   // Culled keyframes: parent and the transform from it, so that frames
   // tracked against them keep a pose.
@@ -146,6 +222,7 @@ class Map {
   std::unordered_map<MapPointId, MapPoint> points_;
   KeyFrameId next_keyframe_id_ = 0;
   MapPointId next_point_id_ = 0;
+  std::uint64_t generation_ = 0;
 };
 
 }  // namespace dlslam

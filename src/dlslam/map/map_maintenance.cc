@@ -15,45 +15,55 @@ LocalBundle Map::BuildLocalBundle(KeyFrameId keyframe) const {
   const KeyFrame& kf = keyframes_.at(keyframe);
   bundle.problem.camera = kf.frame->camera();
   std::unordered_map<KeyFrameId, int> pose_index;
-  const auto add_pose = [&](KeyFrameId id, bool fixed) {
-    if (pose_index.count(id)) return;
-    pose_index[id] = static_cast<int>(bundle.pose_ids.size());
-    bundle.pose_ids.push_back(id);
-    bundle.problem.poses.push_back({keyframes_.at(id).cam_from_world, fixed || id == 0});
-  };
-  add_pose(keyframe, false);
-  for (const auto& [other, w] : kf.covisibility) add_pose(other, false);
+  AddBundlePoseLocked(keyframe, false, &bundle, &pose_index);
+  for (const auto& [other, w] : kf.covisibility) AddBundlePoseLocked(other, false, &bundle, &pose_index);
   const std::size_t num_local = bundle.pose_ids.size();
-  std::unordered_map<MapPointId, int> point_index;
+  std::unordered_set<MapPointId> added;
   for (std::size_t i = 0; i < num_local; ++i) {
     for (MapPointId pid : keyframes_.at(bundle.pose_ids[i]).points) {
-      if (pid == kNoId || point_index.count(pid)) continue;
-      point_index[pid] = static_cast<int>(bundle.point_ids.size());
+      if (pid == kNoId || !added.insert(pid).second) continue;
       bundle.point_ids.push_back(pid);
       bundle.problem.points.push_back(points_.at(pid).position);
     }
   }
-  for (std::size_t j = 0; j < bundle.point_ids.size(); ++j) {
-    for (const auto& [kf_id, idx] : points_.at(bundle.point_ids[j]).observations) {
-      add_pose(kf_id, true);  // no-op for local keyframes
+  AddBundleObservationsLocked(/*fix_new_poses=*/true, &bundle, &pose_index);
+  return bundle;
+}
+
+void Map::AddBundlePoseLocked(KeyFrameId keyframe, bool fixed, LocalBundle* bundle,
+                              std::unordered_map<KeyFrameId, int>* pose_index) const {
+  if (pose_index->count(keyframe)) return;
+  (*pose_index)[keyframe] = static_cast<int>(bundle->pose_ids.size());
+  bundle->pose_ids.push_back(keyframe);
+  bundle->problem.poses.push_back({keyframes_.at(keyframe).cam_from_world, fixed || keyframe == 0});
+}
+
+void Map::AddBundleObservationsLocked(bool fix_new_poses, LocalBundle* bundle,
+                                      std::unordered_map<KeyFrameId, int>* pose_index) const {
+  for (std::size_t j = 0; j < bundle->point_ids.size(); ++j) {
+    for (const auto& [kf_id, idx] : points_.at(bundle->point_ids[j]).observations) {
+      AddBundlePoseLocked(kf_id, fix_new_poses, bundle, pose_index);  // no-op for poses already in
       const KeyFrame& observer = keyframes_.at(kf_id);
       const FrameKeypoint& k = observer.frame->keypoint(idx);
       BundleProblem::Observation o;
-      o.pose = pose_index.at(kf_id);
+      o.pose = pose_index->at(kf_id);
       o.point = static_cast<int>(j);
       o.pixel = k.uv;
       o.right_u = k.right_u;
       o.information = observer.frame->pyramid().InverseSigma2(k.octave);
-      bundle.problem.observations.push_back(o);
-      bundle.keypoints.push_back(idx);
+      bundle->problem.observations.push_back(o);
+      bundle->keypoints.push_back(idx);
     }
   }
-  return bundle;
 }
 
 void Map::ApplyLocalBundle(const LocalBundle& bundle, const std::vector<bool>& outlier) {
   DLSLAM_CHECK_EQ(outlier.size(), bundle.problem.observations.size());
   std::lock_guard lock(mutex_);
+  ApplyBundleLocked(bundle, outlier);
+}
+
+void Map::ApplyBundleLocked(const LocalBundle& bundle, const std::vector<bool>& outlier) {
   for (std::size_t k = 0; k < outlier.size(); ++k) {
     if (!outlier[k]) continue;
     const auto& o = bundle.problem.observations[k];
@@ -104,6 +114,7 @@ std::vector<KeyFrameId> Map::CullRedundantKeyFrames(KeyFrameId current, double c
     // back, so culling it here would pull it from under the tracking thread.
     if (id == 0 || id >= current || !keyframes_.count(id)) continue;
     const KeyFrame& kf = keyframes_.at(id);
+    if (!kf.loop_edges.empty()) continue;  // a loop anchor: the pose graph needs it
     int close_points = 0, redundant = 0;
     for (std::size_t i = 0; i < kf.points.size(); ++i) {
       const MapPointId pid = kf.points[i];
@@ -167,6 +178,7 @@ void Map::EraseKeyFrameLocked(KeyFrameId keyframe) {
     if (kf.points[i] != kNoId) EraseObservationLocked(kf.points[i], keyframe);
   }
   for (const auto& [other, w] : kf.covisibility) keyframes_.at(other).covisibility.erase(keyframe);
+  for (KeyFrameId other : kf.loop_edges) keyframes_.at(other).loop_edges.erase(keyframe);
   // Children move to the culled keyframe's parent (or to the strongest neighbour).
   KeyFrameId parent = kf.parent;
   if (parent == kNoId && !kf.covisibility.empty()) {

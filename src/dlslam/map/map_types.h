@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <set>
 #include <vector>
 
 #include "dlslam/data/frame.h"
@@ -51,6 +52,7 @@ struct KeyFrame {
   std::vector<MapPointId> points;          // per keypoint; kNoId if none
   std::map<KeyFrameId, int> covisibility;  // keyframe -> number of shared points
   KeyFrameId parent = kNoId;               // spanning tree
+  std::set<KeyFrameId> loop_edges;         // keyframes a loop closure joined it to
 };
 
 // What tracking needs of a map point, copied out of the map.
