@@ -4,6 +4,7 @@
 #include <ceres/rotation.h>
 
 #include <array>
+#include <atomic>
 #include <cmath>
 
 #include "dlslam/optimize/pose_optimizer.h"
@@ -50,6 +51,24 @@ double ObservationChi2(const BundleProblem& problem, const BundleProblem::Observ
 }
 
 namespace {
+
+// Ends a Ceres solve between iterations once the abort flag is set. It ends
+// it as USER_SUCCESS, not SOLVER_ABORT: an aborted Ceres solve does not
+// write its parameters back, which would throw away the pass's progress so
+// far; terminating keeps the last accepted (best) state.
+class AbortCallback : public ceres::IterationCallback {
+ public:
+  AbortCallback(const std::atomic<bool>* abort, bool* aborted) : abort_(abort), aborted_(aborted) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    if (!abort_->load(std::memory_order_relaxed)) return ceres::SOLVER_CONTINUE;
+    *aborted_ = true;
+    return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+  }
+
+ private:
+  const std::atomic<bool>* abort_;
+  bool* aborted_;
+};
 
 // Reprojection error of a world point in a camera, whitened by the
 // observation's information. Pose parameters: quaternion (x, y, z, w, Eigen
@@ -141,6 +160,8 @@ BundleSummary SolveBundleCeres(BundleProblem* problem, const BundleAdjusterOptio
     solver_options.num_threads = options.threads;
     solver_options.logging_type = ceres::SILENT;
     solver_options.function_tolerance = options.function_tolerance;
+    AbortCallback abort_callback(options.abort, &summary.aborted);
+    if (options.abort != nullptr) solver_options.callbacks.push_back(&abort_callback);
     ceres::Solver::Summary s;
     ceres::Solve(solver_options, &ceres_problem, &s);
     summary.iterations += static_cast<int>(s.iterations.size());
@@ -154,7 +175,7 @@ BundleSummary SolveBundleCeres(BundleProblem* problem, const BundleAdjusterOptio
     const auto& o = problem->observations[k];
     summary.outlier[k] = Chi2(*problem, o, poses) > (o.right_u >= 0 ? options.chi2_stereo : options.chi2_mono);
   }
-  if (options.second_pass_iterations > 0) solve(options.second_pass_iterations, false, summary.outlier);
+  if (options.second_pass_iterations > 0 && !summary.aborted) solve(options.second_pass_iterations, false, summary.outlier);
   summary.outliers = 0;
   for (std::size_t k = 0; k < problem->observations.size(); ++k) {
     const auto& o = problem->observations[k];

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,11 @@ struct BundleAdjusterOptions {
   // A pass stops when an accepted step lowers the cost by less than this
   // fraction of it (Ceres' function_tolerance; both solvers).
   double function_tolerance = 1e-6;
+  // Set from another thread to stop the solve (the loop closer interrupts a
+  // global BA when a new loop arrives). Checked between iterations; the solve
+  // then returns early with the best state so far and summary.aborted set.
+  // nullptr: never aborted. Not owned; must outlive the call.
+  const std::atomic<bool>* abort = nullptr;
 
   void Check() const;
 };
@@ -67,6 +73,7 @@ struct BundleSummary {
   double initial_cost = 0.0;  // 0.5 * sum of (robust) squared whitened errors, before and after
   double final_cost = 0.0;
   std::vector<bool> outlier;  // per observation, after the second pass
+  bool aborted = false;       // options.abort was seen set; the remaining iterations were skipped
 };
 
 // Optimises the non-fixed poses and all points in place with options.solver.

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <random>
 #include <string>
 
@@ -121,6 +122,46 @@ TEST_P(BundleAdjuster, FlagsOutliersAndStaysAccurate) {
   EXPECT_EQ(caught, outliers);
   EXPECT_LT(false_alarms, 0.1 * (static_cast<int>(s.is_outlier.size()) - outliers));
   EXPECT_LT(MaxPoseError(s), 0.005);
+}
+
+double TotalChi2(const BundleProblem& p) {
+  double chi2 = 0;
+  for (const auto& o : p.observations) chi2 += ObservationChi2(p, o);
+  return chi2;
+}
+
+TEST_P(BundleAdjuster, AbortFlagAlreadySetReturnsAtOnce) {
+  Scene s = MakeScene(1.0, 0.0, 4);
+  const double chi2_before = TotalChi2(s.problem);
+  const std::atomic<bool> abort(true);
+  BundleAdjusterOptions options;
+  options.solver = GetParam();
+  options.abort = &abort;
+  const BundleSummary summary = SolveBundle(&s.problem, options);
+  EXPECT_TRUE(summary.aborted);
+  EXPECT_LE(summary.iterations, 1);
+  EXPECT_GT(summary.initial_cost, 0.0);
+  EXPECT_LE(summary.final_cost, summary.initial_cost);
+  EXPECT_LE(TotalChi2(s.problem), chi2_before * (1 + 1e-12));
+  EXPECT_EQ(summary.outlier.size(), s.problem.observations.size());
+}
+
+TEST_P(BundleAdjuster, AbortFlagLeftClearChangesNothing) {
+  Scene with_flag = MakeScene(1.0, 0.05, 5);
+  Scene without = with_flag;
+  const std::atomic<bool> abort(false);
+  BundleAdjusterOptions options;
+  options.solver = GetParam();
+  options.abort = &abort;
+  const BundleSummary summary = SolveBundle(&with_flag.problem, options);
+  const BundleSummary reference = Solve(&without.problem);
+  EXPECT_FALSE(summary.aborted);
+  EXPECT_FALSE(reference.aborted);
+  EXPECT_EQ(summary.iterations, reference.iterations);
+  EXPECT_EQ(summary.final_cost, reference.final_cost);
+  for (std::size_t i = 0; i < with_flag.problem.poses.size(); ++i) {
+    EXPECT_EQ(with_flag.problem.poses[i].cam_from_world.matrix(), without.problem.poses[i].cam_from_world.matrix());
+  }
 }
 
 TEST_P(BundleAdjuster, EmptyProblemIsANoOp) {

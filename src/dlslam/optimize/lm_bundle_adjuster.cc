@@ -12,6 +12,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "dlslam/optimize/bundle_adjuster.h"
@@ -48,7 +49,9 @@ class LmSolver {
 
   // One pass of at most `iterations` iterations over the observations not in
   // `skip`. Returns the iterations run; the costs are 0.5 * sum rho.
-  int Run(int iterations, bool robust, const std::vector<bool>& skip, double* initial_cost, double* final_cost) {
+  // Stops before an iteration when options.abort is set (and says so in *aborted).
+  int Run(int iterations, bool robust, const std::vector<bool>& skip, double* initial_cost, double* final_cost,
+          bool* aborted) {
     robust_ = robust;
     skip_ = &skip;
     double cost = Cost();
@@ -56,6 +59,10 @@ class LmSolver {
     double lambda = 1e-4;
     int done = 0;
     for (; done < iterations; ++done) {
+      if (options_.abort != nullptr && options_.abort->load(std::memory_order_relaxed)) {
+        *aborted = true;
+        break;
+      }
       BuildNormalEquations();
       bool accepted = false;
       double previous = cost;
@@ -277,7 +284,7 @@ BundleSummary SolveBundleLm(BundleProblem* problem, const BundleAdjusterOptions&
   bool first = true;
   const auto pass = [&](int iterations, bool robust, const std::vector<bool>& skip) {
     double initial = 0, final_cost = 0;
-    summary.iterations += solver.Run(iterations, robust, skip, &initial, &final_cost);
+    summary.iterations += solver.Run(iterations, robust, skip, &initial, &final_cost, &summary.aborted);
     if (first) summary.initial_cost = initial;
     first = false;
     summary.final_cost = final_cost;
@@ -285,7 +292,7 @@ BundleSummary SolveBundleLm(BundleProblem* problem, const BundleAdjusterOptions&
   const std::vector<bool> none(n, false);
   if (options.first_pass_iterations > 0) pass(options.first_pass_iterations, true, none);
   classify();
-  if (options.second_pass_iterations > 0) pass(options.second_pass_iterations, false, summary.outlier);
+  if (options.second_pass_iterations > 0 && !summary.aborted) pass(options.second_pass_iterations, false, summary.outlier);
   classify();
   return summary;
 }

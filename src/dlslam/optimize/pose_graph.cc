@@ -93,8 +93,8 @@ PoseGraphSummary OptimizePoseGraph(PoseGraph* graph, const PoseGraphOptions& opt
   ceres::Problem problem(problem_options);
   ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>> pose_manifold;
   for (const PoseGraphEdge& edge : graph->edges) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<EdgeError, 6, 7, 7>(new EdgeError(edge.to_from_from, edge.weight)),
-                             nullptr, blocks[edge.to].data(), blocks[edge.from].data());
+    auto* cost = new ceres::AutoDiffCostFunction<EdgeError, 6, 7, 7>(new EdgeError(edge.to_from_from, edge.weight));
+    problem.AddResidualBlock(cost, nullptr, blocks[edge.to].data(), blocks[edge.from].data());
   }
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     if (!problem.HasParameterBlock(blocks[i].data())) continue;

@@ -22,7 +22,8 @@ std::vector<SE3d> CirclePoses(int n) {
   for (int k = 0; k < n; ++k) {
     const double angle = 2 * std::numbers::pi * k / n;
     const SO3d world_rotation = SO3d::Exp(Eigen::Vector3d(0, angle, 0.05 * std::sin(angle)));
-    const SE3d world_from_cam(world_rotation, Eigen::Vector3d(3 * std::cos(angle), 0.2 * std::sin(2 * angle), 3 * std::sin(angle)));
+    const Eigen::Vector3d position(3 * std::cos(angle), 0.2 * std::sin(2 * angle), 3 * std::sin(angle));
+    const SE3d world_from_cam(world_rotation, position);
     poses.push_back(world_from_cam.Inverse());
   }
   return poses;
@@ -61,7 +62,9 @@ TEST(PoseGraph, ConsistentGraphStaysPut) {
   EXPECT_LT(s.initial_cost, 1e-25);
   EXPECT_LT(s.final_cost, 1e-25);
   EXPECT_TRUE(s.converged);
-  for (std::size_t k = 0; k < truth.size(); ++k) EXPECT_LT(MaxPoseDifference(g.cam_from_world[k], truth[k]), 1e-12) << k;
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    EXPECT_LT(MaxPoseDifference(g.cam_from_world[k], truth[k]), 1e-12) << k;
+  }
 }
 
 TEST(PoseGraph, ConsistentGraphIsRecoveredFromAPerturbedStart) {

@@ -86,7 +86,8 @@ std::optional<RigidRansacResult> EstimateRigidRansac(std::span<const Eigen::Vect
     while (i2 == i0 || i2 == i1) i2 = pick(rng);
     sample_a = {a[i0], a[i1], a[i2]};
     sample_b = {b[i0], b[i1], b[i2]};
-    if (Degenerate(sample_a[0], sample_a[1], sample_a[2]) || Degenerate(sample_b[0], sample_b[1], sample_b[2])) continue;
+    if (Degenerate(sample_a[0], sample_a[1], sample_a[2])) continue;
+    if (Degenerate(sample_b[0], sample_b[1], sample_b[2])) continue;
     const SE3d model = ToSe3(eval::AlignHorn(sample_a, sample_b));
     const int count = CountInliers(model, a, b, max_error, nullptr);
     if (count > best) {
