@@ -67,6 +67,8 @@ SegmenterOptions OptionsFor(Model model) {
   const fs::path dir = SharedData() / "models/deeplabv3-mnv2-voc";
   if (model == kTeacherDm05) {
     options.model_path = dir / "deeplabv3_mnv2_dm05_voc_257x337.onnx";
+    options.input_width = 337;
+    options.input_height = 257;
   } else {
     options.model_path = dir / "deeplabv3_mnv2_voc_385x513.onnx";
     options.input_width = 513;
