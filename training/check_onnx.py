@@ -2,7 +2,7 @@
 """Load an exported ONNX with cv2.dnn, compare its logits with the PyTorch checkpoint on real validation
 images (max |diff| must be < 1e-3), and time blobFromImage + forward at the model's input size.
 
-  /usr/bin/python3 training/check_onnx.py --checkpoint training/checkpoints/mnv2_w05.pt --onnx models/x.onnx
+  /usr/bin/python3 training/check_onnx.py --checkpoint training/checkpoints/mnv2_w05.pt --onnx models/x.onnx [--size H W]
 Exit code 1 if the difference bound fails."""
 import argparse
 import os
@@ -27,11 +27,13 @@ def main():
     ap.add_argument('--runs', type=int, default=30, help='timed forward passes')
     ap.add_argument('--threads', type=int, default=2)
     ap.add_argument('--tolerance', type=float, default=1e-3)
+    ap.add_argument('--size', type=int, nargs=2, metavar=('H', 'W'),
+                    help="the ONNX model's input size; default: the checkpoint's training input size")
     args = ap.parse_args()
     torch.set_num_threads(args.threads)
     cv2.setNumThreads(args.threads)
     model, ck = load_checkpoint_model(args.checkpoint)
-    h, w = ck['model_config']['input_hw']
+    h, w = args.size or ck['model_config']['input_hw']
     net = cv2.dnn.readNetFromONNX(args.onnx)
     rows = [r for r in read_split('val') if r[0] != 'kitchen']
     rows = rows[::max(1, len(rows) // args.images)][:args.images]

@@ -8,7 +8,8 @@ from .layers import ConvBNAct, SeparableConv
 from .mobilenetv2 import MobileNetV2Backbone
 from .resnest import ResNeStBackbone
 
-# name -> constructor arguments. The default (mnv2_w05) is sized for < 30 ms per 257x337 frame in cv2.dnn.
+# name -> constructor arguments. The default (mnv2_w05), trained at 257x337, is shipped exported at 209x273
+# (< 30 ms per frame in cv2.dnn; docs/semantic.md, "Input size").
 MODEL_PRESETS = {
     'mnv2_w05': dict(backbone='mobilenetv2', width_mult=0.5, aspp_channels=128, decoder_channels=64),
     'mnv2_w10': dict(backbone='mobilenetv2', width_mult=1.0, aspp_channels=256, decoder_channels=128),

@@ -61,7 +61,7 @@ TEST(OnnxSegmenter, IdentityModelGivesTheColouredShapes) {
   ASSERT_EQ(r.dynamic_mask.type(), CV_8UC1);
   EXPECT_EQ(r.propagated_from, 0);
   EXPECT_GT(r.seconds, 0.0);
-  // Resizing to 337 x 257 and back moves an edge by up to ~2 px.
+  // Resizing to 273 x 209 and back moves an edge by up to ~2 px.
   ExpectMaskBetween(r.dynamic_mask, Grow(kGreen, -3), Grow(kGreen, 3), "dynamic");
   ExpectMaskBetween(r.movable_mask, Grow(kBlue, -3), Grow(kBlue, 3), "movable");
   EXPECT_EQ(cv::countNonZero(r.labels == 1), cv::countNonZero(r.dynamic_mask));
@@ -82,7 +82,7 @@ TEST(OnnxSegmenter, DynamicMaskGrowsByTheMargin) {
 
 TEST(OnnxSegmenter, AnyFrameSizeComesBackAtItsOwnSize) {
   OnnxSegmenter segmenter(IdentityOptions());
-  for (const cv::Size size : {cv::Size(16, 16), cv::Size(337, 257), cv::Size(1023, 77)}) {
+  for (const cv::Size size : {cv::Size(16, 16), cv::Size(273, 209), cv::Size(1023, 77)}) {
     const SegmentationResult r = segmenter.Segment(cv::Mat(size, CV_8UC3, cv::Scalar(0, 255, 0)));
     EXPECT_EQ(r.labels.size(), size);
     EXPECT_EQ(cv::countNonZero(r.dynamic_mask), size.area());
@@ -154,15 +154,15 @@ TEST_F(BadModelTest, TruncatedOrGarbageFile) {
 }
 
 TEST_F(BadModelTest, WrongOutputShape) {
-  EXPECT_THAT(LoadError(Fixture("two_classes.onnx")), HasSubstr("output is 1 x 2 x 257 x 337"));
-  EXPECT_THAT(LoadError(Fixture("half_size.onnx")), HasSubstr("output is 1 x 3 x 129 x 169"));
+  EXPECT_THAT(LoadError(Fixture("two_classes.onnx")), HasSubstr("output is 1 x 2 x 209 x 273"));
+  EXPECT_THAT(LoadError(Fixture("half_size.onnx")), HasSubstr("output is 1 x 3 x 105 x 137"));
   EXPECT_THAT(LoadError(Fixture("vector_output.onnx")), HasSubstr("output is 1 x 3 ("));
   // A good model with options that do not fit it: another class count.
   SegmenterOptions voc;
   voc.num_classes = 21;
   voc.dynamic_classes = {15};
   voc.movable_classes = {9};
-  EXPECT_THAT(LoadError(ShippedModel(), voc), HasSubstr("expected 1 x 21 x 257 x 337"));
+  EXPECT_THAT(LoadError(ShippedModel(), voc), HasSubstr("expected 1 x 21 x 209 x 273"));
 }
 
 TEST(OnnxSegmenterOptions, CheckNamesTheBadValue) {

@@ -90,7 +90,7 @@ TEST_F(SegmentCliTest, ShippedModelByDefault) {
   const fs::path image = WriteFrame("wall.jpg", Frame(0));
   const CliRun run = Cli("--image " + Quoted(image) + " --out " + Quoted(dir_ / "m.png"));
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_THAT(run.output, HasSubstr("dlslam_seg_mnv2_w05_257x337.onnx"));
+  EXPECT_THAT(run.output, HasSubstr("dlslam_seg_mnv2_w05_209x273.onnx"));
   EXPECT_EQ(cv::imread((dir_ / "m.png").string(), cv::IMREAD_UNCHANGED).size(), cv::Size(160, 120));
 }
 
@@ -132,7 +132,7 @@ TEST_F(SegmentCliTest, BadModels) {
   ExpectError("--image " + Quoted(image) + " --model " + Quoted(dir_ / "garbage.onnx"), "not a loadable ONNX");
   ExpectError("--image " + Quoted(image) + " --model " +
                   Quoted(dlslam::testing::FixturePath("semantic/two_classes.onnx")),
-              "two_classes.onnx: ONNX model output is 1 x 2 x 257 x 337");
+              "two_classes.onnx: ONNX model output is 1 x 2 x 209 x 273");
 }
 
 TEST_F(SegmentCliTest, BadSequences) {

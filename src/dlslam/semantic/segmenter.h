@@ -16,7 +16,7 @@
 namespace dlslam::semantic {
 
 // The shipped model (models/README.md): 0 background, 1 person, 2 chair.
-inline constexpr const char* kDefaultModelFile = "dlslam_seg_mnv2_w05_257x337.onnx";
+inline constexpr const char* kDefaultModelFile = "dlslam_seg_mnv2_w05_209x273.onnx";
 
 struct SegmenterOptions {
   // Backend: "opencv-dnn" (ONNX through cv::dnn, CPU). The only one so far.
@@ -25,8 +25,10 @@ struct SegmenterOptions {
   // ($DLSLAM_MODEL_DIR, <exe>/../share/dlslam/models, the source tree's models/).
   std::filesystem::path model_path;
   // Network input [px]: the model's fixed size (16k+1 for DeepLab models).
-  int input_width = 337;
-  int input_height = 257;
+  // The shipped model was trained at 257x337 and exported at 209x273 for
+  // speed (docs/semantic.md, "Input size").
+  int input_width = 273;
+  int input_height = 209;
   // Output channels (classes) the model must have; checked by a dry forward at load.
   int num_classes = 3;
   // Class ids removed from SLAM in every frame (default: person).
