@@ -61,6 +61,8 @@ void RunSynth(const SynthArgs& args, bool frames_given) {
     description += " replay=" + args.replay.filename().string();
   } else if (!args.timestamps.empty()) {
     throw Error("--timestamps needs --replay");
+  } else if (!frames_given) {
+    options.frames = synth::PresetDefaultFrames(options.preset, options.fps);
   }
   const synth::SynthSequence sequence(options, replay);
   if (replay) {
@@ -106,9 +108,12 @@ void AddSynthCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("synth", "Render a synthetic dynamic RGB-D sequence with ground truth (TUM layout)");
   cmd->add_option("--preset", args->preset,
                   "static | walking_xyz | walking_rpy | walking_halfsphere | walking_static | sitting_static | kidnap "
-                  "(pans 2 s, black 0.5 s, reappears at its pose of 0.4 s)")
+                  "(pans 2 s, black 0.5 s, reappears at its pose of 0.4 s) | loop (no people; circles the room twice, "
+                  "radius 1 m, looking outward at the walls, 18 s a lap, then 1.5 s of the first lap again)")
       ->capture_default_str();
-  CLI::Option* frames = cmd->add_option("--frames", args->frames, "Number of frames (with --replay: at most; default all)")
+  CLI::Option* frames = cmd->add_option("--frames", args->frames,
+                                        "Number of frames (loop: default 1125 = two laps and 1.5 s; "
+                                        "with --replay: at most, default all)")
                             ->capture_default_str()
                             ->check(CLI::Range(1, 100000000));
   cmd->add_option("--seed", args->seed, "Seed: the same seed gives byte-identical files")->capture_default_str();

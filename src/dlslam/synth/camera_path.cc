@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "dlslam/synth/random.h"
+#include "dlslam/synth/room.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam::synth {
@@ -41,7 +42,26 @@ void KidnapPan(double u, Eigen::Vector3d& p, Eigen::Vector3d& rpy) {
   rpy = Eigen::Vector3d(0.0, 15 * kDeg * s, 0.0);
 }
 
+// The loop preset's first_from_cam at time t. In the level frame (the first
+// camera's frame without its pitch: x right, y down along gravity, z forward
+// horizontally) the circle's centre is the radius behind the start and the
+// camera turns about the vertical; the pitch stays that of the viewpoint.
+SE3d LoopFirstFromCam(double t) {
+  const double yaw = 2 * kPi * t / kLoopLapS;
+  const double r = room::kLoopRadius;
+  const SO3d level_from_first = SO3d::Exp(Eigen::Vector3d(-room::kViewpointPitchDown, 0, 0));
+  const SE3d level_from_cam(SO3d::Exp(Eigen::Vector3d(0, yaw, 0)) * level_from_first,
+                            Eigen::Vector3d(r * std::sin(yaw), 0, r * (std::cos(yaw) - 1)));
+  return SE3d(level_from_first.Inverse(), Eigen::Vector3d::Zero()) * level_from_cam;
+}
+
 }  // namespace
+
+int PresetDefaultFrames(Preset preset, double fps) {
+  DLSLAM_CHECK_GT(fps, 0.0, "frame rate [Hz]");
+  if (preset == Preset::kLoop) return static_cast<int>(std::lround((2 * kLoopLapS + kLoopOverlapS) * fps));
+  return 300;
+}
 
 bool LensCovered(Preset preset, double t) {
   return preset == Preset::kKidnap && t >= kKidnapMappingS && t < kKidnapMappingS + kKidnapCoveredS;
@@ -109,6 +129,7 @@ SE3d CameraMotion::FirstFromCam(double t) const {
       KidnapPan(u, p, rpy);
       break;
     }
+    case Preset::kLoop: return LoopFirstFromCam(t) * shake;
     case Preset::kWalkingStatic:
     case Preset::kSittingStatic: break;
   }

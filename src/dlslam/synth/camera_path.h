@@ -40,6 +40,18 @@ inline constexpr double kKidnapResumeAtS = 0.4;
 // True while the preset's lens is covered (only the kidnap preset has that).
 bool LensCovered(Preset preset, double t);
 
+// The loop preset: the camera goes round a horizontal circle (radius
+// room::kLoopRadius around room::kLoopCentre, at the viewpoint's height and
+// pitch) looking outward, turning right at a constant rate, one lap in
+// kLoopLapS; by default it renders two laps and kLoopOverlapS more, so that
+// the second lap sees the first lap's start again after the whole room.
+inline constexpr double kLoopLapS = 18.0;
+inline constexpr double kLoopOverlapS = 1.5;
+
+// The frames a preset renders when the user asks for no number: two laps
+// and the overlap for loop (1125 at 30 Hz), 300 for the others.
+int PresetDefaultFrames(Preset preset, double fps);
+
 // The camera path of a preset: `frames` poses at `fps` from `start_timestamp`
 // (timestamps rounded to microseconds, as TUM files store them).
 Trajectory PresetCameraPath(Preset preset, std::uint32_t seed, const SE3d& viewpoint, int frames, double fps,

@@ -90,7 +90,8 @@ TEST(CameraMotion, KidnapReappearsWhereItWas) {
 TEST(CameraPath, PresetPathsStayInTheRoom) {
   const Scene scene = BuildScene(Preset::kStatic, 1);  // every preset shares the room layout
   for (const std::string& name : PresetNames()) {
-    const Trajectory path = PresetCameraPath(ParsePreset(name), 4, scene.viewpoint, 1800, 30.0, 1700000000.0);
+    const Preset preset = ParsePreset(name);
+    const Trajectory path = PresetCameraPath(preset, 4, PresetViewpoint(preset), 1800, 30.0, 1700000000.0);
     ASSERT_EQ(path.size(), 1800u);
     EXPECT_DOUBLE_EQ(path[1].timestamp, 1700000000.033333);
     for (const StampedPose& p : path) ASSERT_TRUE(InFreeSpace(scene, p.translation, 0.1)) << name << " " << p.timestamp;

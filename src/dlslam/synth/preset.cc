@@ -11,7 +11,7 @@
 namespace dlslam::synth {
 
 namespace {
-constexpr std::array<std::pair<Preset, const char*>, 7> kNames = {{
+constexpr std::array<std::pair<Preset, const char*>, 8> kNames = {{
     {Preset::kStatic, "static"},
     {Preset::kWalkingXyz, "walking_xyz"},
     {Preset::kWalkingRpy, "walking_rpy"},
@@ -19,6 +19,7 @@ constexpr std::array<std::pair<Preset, const char*>, 7> kNames = {{
     {Preset::kWalkingStatic, "walking_static"},
     {Preset::kSittingStatic, "sitting_static"},
     {Preset::kKidnap, "kidnap"},
+    {Preset::kLoop, "loop"},
 }};
 }  // namespace
 

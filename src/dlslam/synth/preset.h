@@ -16,6 +16,7 @@ enum class Preset {
   kWalkingStatic,      // two people walk; camera nearly still (sub-cm jitter)
   kSittingStatic,      // two people sit and gesture, a box slides; camera nearly still
   kKidnap,             // no people; the camera pans, is covered (black frames), and reappears where it was
+  kLoop,               // no people; the camera circles the room twice looking outward (loop closing)
 };
 
 // Throws dlslam::Error listing the known names.

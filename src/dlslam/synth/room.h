@@ -22,6 +22,11 @@ inline const Eigen::Vector3d kDeskMax(1.0, 2.1, 0.75);
 // Where every camera path starts: 1.45 m high, looking along +y, pitched down.
 inline const Eigen::Vector3d kViewpoint(0.0, 0.0, 1.45);
 inline constexpr double kViewpointPitchDown = 0.21;  // [rad] (12 deg, as TUM fr3's start)
+// The loop preset's circle at the viewpoint's height: its centre is near the
+// room's, so that looking outward the walls are 1.75-2.2 m away (far enough
+// for the wall textures not to be magnified, near enough for good depth).
+inline const Eigen::Vector2d kLoopCentre(0.0, 0.25);
+inline constexpr double kLoopRadius = 1.0;  // [m]
 // Seats of the chairs behind the desk (sitting presets), facing the camera.
 inline const Eigen::Vector2d kSeatLeft(-0.45, 2.45);
 inline const Eigen::Vector2d kSeatRight(0.45, 2.45);

@@ -84,25 +84,33 @@ int Scene::AddMaterial(int texture, std::mt19937& rng, float tint) {
   return static_cast<int>(materials.size()) - 1;
 }
 
+SE3d PresetViewpoint(Preset preset) {
+  const double p = room::kViewpointPitchDown;
+  Eigen::Matrix3d R;  // columns: camera x (right), y (down), z (forward) in the world
+  R.col(0) = Eigen::Vector3d::UnitX();
+  R.col(2) = Eigen::Vector3d(0, std::cos(p), -std::sin(p));
+  R.col(1) = R.col(2).cross(R.col(0));
+  Eigen::Vector3d position = room::kViewpoint;
+  if (preset == Preset::kLoop) position.head<2>() = room::kLoopCentre + Eigen::Vector2d(0, room::kLoopRadius);
+  return SE3d(SO3d(R), position);
+}
+
 Scene BuildScene(Preset preset, std::uint32_t seed, const SceneOptions& options) {
   options.Check();
   Scene s;
   std::mt19937 rng = MakeRng(seed, kSceneStream);
   RoomOptions room_options;
   room_options.ceiling = options.ceiling;
-  const bool walking = preset != Preset::kStatic && preset != Preset::kSittingStatic && preset != Preset::kKidnap;
+  const bool walking = preset != Preset::kStatic && preset != Preset::kSittingStatic && preset != Preset::kKidnap &&
+                       preset != Preset::kLoop;
   room_options.chairs_at_desk = !walking;
   room_options.desk_shift_y = walking ? room::kWalkingDeskShift : 0.0;
   BuildRoom(s, room_options, rng);
-  const double p = room::kViewpointPitchDown;
-  Eigen::Matrix3d R;  // columns: camera x (right), y (down), z (forward) in the world
-  R.col(0) = Eigen::Vector3d::UnitX();
-  R.col(2) = Eigen::Vector3d(0, std::cos(p), -std::sin(p));
-  R.col(1) = R.col(2).cross(R.col(0));
-  s.viewpoint = SE3d(SO3d(R), room::kViewpoint);
+  s.viewpoint = PresetViewpoint(preset);
   switch (preset) {
     case Preset::kStatic:
-    case Preset::kKidnap: break;
+    case Preset::kKidnap:
+    case Preset::kLoop: break;
     case Preset::kSittingStatic: AddSitters(s, rng); break;
     case Preset::kWalkingXyz:
     case Preset::kWalkingRpy:

@@ -30,7 +30,7 @@ struct Scene {
   std::vector<Actor> actors;
   Eigen::AlignedBox3d room;                    // inside of the walls [m]
   std::vector<Eigen::AlignedBox3d> obstacles;  // furniture the camera must stay out of
-  SE3d viewpoint;                              // world_from_cam where every camera path starts
+  SE3d viewpoint;                              // world_from_cam where the camera path starts
   Eigen::Vector3d light_direction{0.3, -0.5, 1.0};  // towards the light (normalised on use)
 
   int AddTexture(TextureStyle style, int width, int height, double texels_per_metre, std::mt19937& rng);
@@ -38,6 +38,11 @@ struct Scene {
   // show different patches of it) and an optional tint.
   int AddMaterial(int texture, std::mt19937& rng, float tint = 1.0f);
 };
+
+// world_from_cam where a preset's camera path starts: (0, 0, 1.45 m) looking
+// along +y, pitched down 12 degrees; the loop preset starts on its circle,
+// room::kLoopRadius beyond room::kLoopCentre along +y, looking the same way.
+SE3d PresetViewpoint(Preset preset);
 
 // Builds the scene of `preset`; deterministic in `seed`.
 Scene BuildScene(Preset preset, std::uint32_t seed, const SceneOptions& options = {});
