@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "dlslam/eval/ate.h"
+#include "dlslam/synth/camera_path.h"
 #include "dlslam/synth/sequence.h"
 #include "dlslam/system/slam_system.h"
 
@@ -23,7 +24,7 @@ struct LoopRun {
   int frames_not_tracked = 0;
 };
 
-LoopRun Run(const synth::SynthSequence& sequence, SystemOptions options) {
+LoopRun RunSlam(const synth::SynthSequence& sequence, SystemOptions options) {
   SlamSystem slam(sequence.options().camera, options);
   LoopRun run;
   for (int i = 0; i < sequence.size(); ++i) {
@@ -81,7 +82,7 @@ SystemOptions Options(bool loop_closing, bool sequential = true) {
 class LoopPresetTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    sequence_ = new synth::SynthSequence(Sequence(synth::Preset::kLoop, synth::DefaultFrames(synth::Preset::kLoop), 1));
+    sequence_ = new synth::SynthSequence(Sequence(synth::Preset::kLoop, synth::PresetDefaultFrames(synth::Preset::kLoop, 30.0), 1));
   }
   static void TearDownTestSuite() {
     delete sequence_;
@@ -92,8 +93,8 @@ class LoopPresetTest : public ::testing::Test {
 synth::SynthSequence* LoopPresetTest::sequence_ = nullptr;
 
 TEST_F(LoopPresetTest, ClosesTheLoopAtTheRightPoseAndReducesDrift) {
-  const LoopRun with = Run(*sequence_, Options(true));
-  const LoopRun without = Run(*sequence_, Options(false));
+  const LoopRun with = RunSlam(*sequence_, Options(true));
+  const LoopRun without = RunSlam(*sequence_, Options(false));
   EXPECT_EQ(with.frames_not_tracked, 0);
   EXPECT_EQ(without.frames_not_tracked, 0);
   ASSERT_GE(with.stats.loop.loops_closed, 1);
@@ -116,7 +117,7 @@ TEST_F(LoopPresetTest, ClosesTheLoopAtTheRightPoseAndReducesDrift) {
 // With the threads (detection while mapping runs; the global bundle
 // adjustment in the background): run under TSan in the sanitizer build.
 TEST_F(LoopPresetTest, ClosesTheLoopWithTheThreads) {
-  const LoopRun run = Run(*sequence_, Options(true, /*sequential=*/false));
+  const LoopRun run = RunSlam(*sequence_, Options(true, /*sequential=*/false));
   EXPECT_EQ(run.frames_not_tracked, 0);
   EXPECT_GE(run.stats.loop.loops_closed, 1);
   ExpectTrueLoops(*sequence_, run);
@@ -128,7 +129,7 @@ TEST(LoopClosingTest, NoFalseLoopsWithoutARevisit) {
   for (const synth::Preset preset : {synth::Preset::kStatic, synth::Preset::kSittingStatic}) {
     SCOPED_TRACE(synth::PresetName(preset));
     const synth::SynthSequence sequence = Sequence(preset, 300, 3);
-    const LoopRun run = Run(sequence, Options(true));
+    const LoopRun run = RunSlam(sequence, Options(true));
     EXPECT_EQ(run.frames_not_tracked, 0);
     ExpectTrueLoops(sequence, run);
     RecordProperty(synth::PresetName(preset) + "_loops", run.stats.loop.loops_closed);
