@@ -102,9 +102,7 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   switch (result.state) {
     case TrackingState::kOk: {
       ++counts_.frames_tracked;
-      const auto reference_pose = map_.ResolveCamFromWorld(result.reference_keyframe);
-      DLSLAM_CHECK(reference_pose.has_value(), "reference keyframe {} vanished", result.reference_keyframe);
-      tracked_.push_back({timestamp, result.reference_keyframe, *result.cam_from_world * reference_pose->Inverse()});
+      tracked_.push_back({timestamp, result.reference_keyframe, result.cam_from_reference});
       break;
     }
     case TrackingState::kLost: ++counts_.frames_lost; break;

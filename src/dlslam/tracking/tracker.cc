@@ -90,7 +90,6 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
   // After a relocalization the last pose is from before the loss: no motion model.
   velocity_ = last_pose_ && !result.relocalized ? std::optional<SE3d>(pose * last_pose_->Inverse()) : std::nullopt;
   ++frames_since_keyframe_;
-  RememberPose(pose, reference, generation);
   last_matches_ = matches;
   // A map moved by loop closing during this call: the pose is from before,
   // so it must not become a keyframe.
@@ -99,9 +98,11 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
     reference_keyframe_ = InsertKeyFrame(frame, pose, matches);
     result.new_keyframe = true;
   }
+  RememberPose(pose, reference_keyframe_, generation);
   result.state = state_;
   result.cam_from_world = pose;
   result.reference_keyframe = reference_keyframe_;
+  result.cam_from_reference = last_from_reference_.value_or(SE3d::Identity());
   return result;
 }
 
@@ -117,6 +118,7 @@ bool Tracker::Initialize(const std::shared_ptr<const Frame>& frame, TrackingResu
   RememberPose(pose, reference_keyframe_, map_->Generation());
   velocity_.reset();
   result->cam_from_world = pose;
+  result->cam_from_reference = SE3d::Identity();
   result->new_keyframe = true;
   result->reference_keyframe = reference_keyframe_;
   result->inliers = with_depth;

@@ -68,6 +68,9 @@ struct TrackingResult {
   int inliers = 0;                     // after it
   bool new_keyframe = false;
   KeyFrameId reference_keyframe = kNoId;
+  // The pose relative to reference_keyframe, taken as it was tracked: it
+  // stays right when loop closing moves the map afterwards.
+  SE3d cam_from_reference;
   // Lost before, tracked again through relocalization against this keyframe.
   bool relocalized = false;
   KeyFrameId relocalization_keyframe = kNoId;
