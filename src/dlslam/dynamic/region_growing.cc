@@ -26,6 +26,9 @@ void RegionGrowingOptions::Check() const {
                "RegionGrowingOptions::static_distance_from_seed_m {} outside [0, 100] (0 = no "
                "limit)",
                static_distance_from_seed_m);
+  DLSLAM_CHECK(static_head_start_px >= 0 && static_head_start_px <= 1000,
+               "RegionGrowingOptions::static_head_start_px {} outside [0, 1000]",
+               static_head_start_px);
   DLSLAM_CHECK(pixel_step == 1 || pixel_step == 2, "RegionGrowingOptions::pixel_step {} is not 1 or 2",
                pixel_step);
   DLSLAM_CHECK(max_region_pixels >= 1, "RegionGrowingOptions::max_region_pixels {} < 1",
@@ -118,9 +121,24 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
   };
   add_seeds(dynamic_seeds, kDynamicOwner);
   if (queue.empty()) return cv::Mat::zeros(depth.size(), CV_8UC1);
-  if (options.static_points_compete) add_seeds(static_seeds, kStaticOwner);
-
+  // Breadth-first levels: [level_end of the previous level, level_end).
+  const int head_start = (options.static_head_start_px + step - 1) / step;
+  bool static_started = !options.static_points_compete;
+  if (!static_started && head_start == 0) {
+    add_seeds(static_seeds, kStaticOwner);
+    static_started = true;
+  }
+  std::size_t level_end = queue.size();
+  int level = 0;
   for (std::size_t head = 0; head < queue.size(); ++head) {
+    if (head == level_end) {
+      ++level;
+      if (!static_started && level >= head_start) {
+        add_seeds(static_seeds, kStaticOwner);
+        static_started = true;
+      }
+      level_end = queue.size();
+    }
     const int index = queue[head];
     const int v = index / cols;
     const int u = index - v * cols;

@@ -41,6 +41,12 @@ struct RegionGrowingOptions {
   // Grow the static points too, and let them claim pixels before a dynamic
   // fill gets there (static evidence as a barrier).
   bool static_points_compete = true;
+  // Dynamic fills get this head start [px] before the static points start
+  // to grow: static points within it of a dynamic region are overrun (on a
+  // slowly moving person many points still test static next to the ones
+  // that test dynamic), while static evidence farther out still closes
+  // the floor and walls. 0 = a fair race.
+  int static_head_start_px = 12;
   // A static fill claims pixels only within this 3-D distance of its point
   // [m] (0 = no limit); bounds its cost. Smaller values (0.15) were tried so
   // that a stray static point on a mover would take only a small disc: no

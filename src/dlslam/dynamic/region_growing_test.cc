@@ -35,6 +35,7 @@ RegionGrowingOptions Unlimited() {
   options.pixel_step = 1;
   options.max_distance_from_seed_m = 0;
   options.static_distance_from_seed_m = 0;
+  options.static_head_start_px = 0;
   return options;
 }
 
@@ -107,6 +108,12 @@ TEST(GrowDynamicRegions, StaticPointsCompeteForTheSurface) {
   EXPECT_EQ(mask.at<std::uint8_t>(60, 69), 255);
   EXPECT_EQ(mask.at<std::uint8_t>(60, 71), 0);
   EXPECT_EQ(mask.at<std::uint8_t>(60, 100), 0);
+  // A head start of 20 px moves the split by 10 px: 40 + h = 100 - (h - 20).
+  RegionGrowingOptions head_start = Unlimited();
+  head_start.static_head_start_px = 20;
+  const cv::Mat later = Grow(wall, {{40, 60}}, head_start, {{100, 60}});
+  EXPECT_EQ(later.at<std::uint8_t>(60, 79), 255);
+  EXPECT_EQ(later.at<std::uint8_t>(60, 81), 0);
   // Without the competition the whole wall is dynamic.
   RegionGrowingOptions no_barriers = Unlimited();
   no_barriers.static_points_compete = false;
@@ -244,6 +251,7 @@ TEST(RegionGrowingOptions, CheckRejectsBadValues) {
   EXPECT_THROW(bad([](auto& o) { o.max_distance_from_seed_m = -1; }).Check(), Error);
   EXPECT_THROW(bad([](auto& o) { o.static_distance_from_seed_m = -1; }).Check(), Error);
   EXPECT_THROW(bad([](auto& o) { o.pixel_step = 3; }).Check(), Error);
+  EXPECT_THROW(bad([](auto& o) { o.static_head_start_px = -1; }).Check(), Error);
   EXPECT_THROW(bad([](auto& o) { o.max_depth_m = 0.05; }).Check(), Error);
 }
 
