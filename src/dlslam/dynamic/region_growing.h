@@ -46,7 +46,7 @@ struct RegionGrowingOptions {
   // slowly moving person many points still test static next to the ones
   // that test dynamic), while static evidence farther out still closes
   // the floor and walls. 0 = a fair race.
-  int static_head_start_px = 12;
+  int static_head_start_px = 20;
   // A static fill claims pixels only within this 3-D distance of its point
   // [m] (0 = no limit); bounds its cost. Smaller values (0.15) were tried so
   // that a stray static point on a mover would take only a small disc: no
