@@ -7,10 +7,11 @@
 // Where a mover touches the scene (feet on the floor, a hand on a desk) the
 // depth is continuous and a plain fill leaks. Two stops bound that:
 // - static evidence competes: the pixels of points the multi-view test found
-//   static are grown at the same time, breadth first, and a pixel belongs to
-//   whichever fill reaches it first (a geodesic Voronoi split of the
-//   depth-continuous surface), so a dynamic region ends about halfway to the
-//   nearest static point on the floor or wall;
+//   static are grown in the same breadth-first fill (after a head start of
+//   the dynamic ones), and a pixel belongs to whichever fill reaches it
+//   first (a geodesic Voronoi split of the depth-continuous surface), so a
+//   dynamic region ends about halfway (plus the head start) to the nearest
+//   static point on the floor or wall;
 // - a size in metres: a pixel joins only within a 3-D distance of its seed's
 //   point (a person is ~0.6 m wide at any range), so a region far from any
 //   static point still stays local; many seeds on a mover cover it.
