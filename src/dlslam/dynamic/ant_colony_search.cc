@@ -10,6 +10,9 @@ namespace dlslam::dynamic {
 void AntColonyOptions::Check() const {
   DLSLAM_CHECK(search_radius_px > 0 && search_radius_px <= 500,
                "AntColonyOptions::search_radius_px {} outside (0, 500]", search_radius_px);
+  DLSLAM_CHECK(static_skip_radius_px >= 0 && static_skip_radius_px <= 500,
+               "AntColonyOptions::static_skip_radius_px {} outside [0, 500]",
+               static_skip_radius_px);
   DLSLAM_CHECK(band_width_px > 0 && band_width_px <= 500,
                "AntColonyOptions::band_width_px {} outside (0, 500]", band_width_px);
   DLSLAM_CHECK(alpha >= 0 && alpha <= 10, "AntColonyOptions::alpha {} outside [0, 10]", alpha);
@@ -268,7 +271,8 @@ SearchResult AntColonySearch::Search(const std::vector<ProjectedPoint>& points, 
         }
       } else if (result.labels[static_cast<std::size_t>(m)] == PointLabel::kStatic) {
         // Skip the static group; pheromone (recent motion) shrinks the group.
-        const float skip = radius * static_cast<float>(options_.tau_min / tau_[c]);
+        const float skip = static_cast<float>(options_.static_skip_radius_px *
+                                              options_.tau_min / tau_[c]);
         ForEachNear(centre, skip, near_open_, [&](int j) {
           if (state_[static_cast<std::size_t>(j)] == State::kOpen) SetState(j, State::kSkipped);
         });

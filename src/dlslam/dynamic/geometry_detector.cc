@@ -56,15 +56,21 @@ GeometryResult GeometryDetector::Detect(const cv::Mat& depth, const CameraIntrin
   result.points_projected = static_cast<int>(n);
   result.points_tested = search.tested;
 
-  std::vector<cv::Point2f> seeds;
+  std::vector<cv::Point2f> seeds, barriers;
   for (std::size_t i = 0; i < n; ++i) {
     const PointLabel label = result.labels[i];
-    if (label == PointLabel::kDynamic) {
+    if (label == PointLabel::kStatic) {
+      barriers.emplace_back(depth_pixels_[i]);
+    } else if (label == PointLabel::kDynamic) {
       ++result.points_dynamic;
       seeds.emplace_back(depth_pixels_[i]);
     } else if (label == PointLabel::kVanished) {
       ++result.points_vanished;
-      if (options_.grow_from_vanished) seeds.emplace_back(depth_pixels_[i]);
+      if (options_.grow_from_vanished) {
+        seeds.emplace_back(depth_pixels_[i]);
+      } else if (options_.vanished_as_barriers) {
+        barriers.emplace_back(depth_pixels_[i]);
+      }
       const ProjectedPoint& p = result.points[i];
       const std::uint64_t id = references[static_cast<std::size_t>(p.view)]
                                    .points[static_cast<std::size_t>(p.point)]
@@ -72,7 +78,7 @@ GeometryResult GeometryDetector::Detect(const cv::Mat& depth, const CameraIntrin
       if (id != std::numeric_limits<std::uint64_t>::max()) result.vanished_ids.push_back(id);
     }
   }
-  result.dynamic_mask = GrowDynamicRegions(depth, seeds, options_.region);
+  result.dynamic_mask = GrowDynamicRegions(depth, intrinsics, seeds, barriers, options_.region);
   return result;
 }
 

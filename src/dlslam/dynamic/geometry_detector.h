@@ -36,6 +36,10 @@ struct GeometryOptions {
   // pixel shows what was behind it, not the mover. Kept as an option for
   // experiments.
   bool grow_from_vanished = false;
+  // A vanished point's current pixel shows the background that was behind
+  // it: use it as static evidence (a barrier for region growing) like the
+  // static points. Ignored when grow_from_vanished.
+  bool vanished_as_barriers = true;
 
   // Throws dlslam::Error naming the field and its value.
   void Check() const;

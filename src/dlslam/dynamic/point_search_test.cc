@@ -196,6 +196,7 @@ TEST(AntColonyOptions, CheckRejectsBadValues) {
     return o;
   };
   EXPECT_THROW(bad([](auto& o) { o.search_radius_px = 0; }).Check(), Error);
+  EXPECT_THROW(bad([](auto& o) { o.static_skip_radius_px = -1; }).Check(), Error);
   EXPECT_THROW(bad([](auto& o) { o.band_width_px = -1; }).Check(), Error);
   EXPECT_THROW(bad([](auto& o) { o.alpha = -1; }).Check(), Error);
   EXPECT_THROW(bad([](auto& o) { o.beta = 11; }).Check(), Error);

@@ -1,7 +1,11 @@
 #include "dlslam/dynamic/region_growing.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+
+#include <opencv2/imgproc.hpp>
 
 #include "dlslam/util/check.h"
 
@@ -15,9 +19,18 @@ void RegionGrowingOptions::Check() const {
   DLSLAM_CHECK(max_depth_from_seed_m > 0 && max_depth_from_seed_m <= 100,
                "RegionGrowingOptions::max_depth_from_seed_m {} outside (0, 100]",
                max_depth_from_seed_m);
-  DLSLAM_CHECK(max_distance_from_seed_px >= 0,
-               "RegionGrowingOptions::max_distance_from_seed_px {} < 0 (0 = no limit)",
-               max_distance_from_seed_px);
+  DLSLAM_CHECK(max_distance_from_seed_m >= 0 && max_distance_from_seed_m <= 100,
+               "RegionGrowingOptions::max_distance_from_seed_m {} outside [0, 100] (0 = no limit)",
+               max_distance_from_seed_m);
+  DLSLAM_CHECK(static_distance_from_seed_m >= 0 && static_distance_from_seed_m <= 100,
+               "RegionGrowingOptions::static_distance_from_seed_m {} outside [0, 100] (0 = no "
+               "limit)",
+               static_distance_from_seed_m);
+  DLSLAM_CHECK(static_head_start_px >= 0 && static_head_start_px <= 1000,
+               "RegionGrowingOptions::static_head_start_px {} outside [0, 1000]",
+               static_head_start_px);
+  DLSLAM_CHECK(pixel_step == 1 || pixel_step == 2, "RegionGrowingOptions::pixel_step {} is not 1 or 2",
+               pixel_step);
   DLSLAM_CHECK(max_region_pixels >= 1, "RegionGrowingOptions::max_region_pixels {} < 1",
                max_region_pixels);
   DLSLAM_CHECK(min_depth_m > 0 && min_depth_m < max_depth_m,
@@ -25,62 +38,144 @@ void RegionGrowingOptions::Check() const {
                max_depth_m);
 }
 
-cv::Mat GrowDynamicRegions(const cv::Mat& depth, const std::vector<cv::Point2f>& seeds,
+namespace {
+
+constexpr std::uint8_t kFree = 0;
+constexpr std::uint8_t kStaticOwner = 1;
+constexpr std::uint8_t kDynamicOwner = 255;
+
+struct Seed {
+  float x, y, z;  // 3-D point in the camera frame [m]
+  int pixels;     // claimed so far
+};
+
+}  // namespace
+
+cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
+                           const std::vector<cv::Point2f>& dynamic_seeds,
+                           const std::vector<cv::Point2f>& static_seeds,
                            const RegionGrowingOptions& options) {
   DLSLAM_CHECK(depth.type() == CV_32FC1, "GrowDynamicRegions: depth must be CV_32FC1, got type {}",
                depth.type());
-  cv::Mat mask = cv::Mat::zeros(depth.size(), CV_8UC1);
-  if (seeds.empty()) return mask;
+  DLSLAM_CHECK(depth.cols == camera.width && depth.rows == camera.height,
+               "GrowDynamicRegions: depth is {}x{}, the camera {}x{}", depth.cols, depth.rows,
+               camera.width, camera.height);
+  if (dynamic_seeds.empty()) return cv::Mat::zeros(depth.size(), CV_8UC1);
+  // The grid: every step-th pixel of the depth image.
+  const int step = options.pixel_step;
+  const int cols = (depth.cols + step - 1) / step;
+  const int rows = (depth.rows + step - 1) / step;
+  std::vector<float> z_of(static_cast<std::size_t>(cols) * static_cast<std::size_t>(rows));
+  for (int v = 0; v < rows; ++v) {
+    const float* row = depth.ptr<float>(v * step);
+    for (int u = 0; u < cols; ++u) z_of[static_cast<std::size_t>(v * cols + u)] = row[u * step];
+  }
+  // Unprojection factors per grid column and row (pinhole).
+  std::vector<float> ray_x(static_cast<std::size_t>(cols)), ray_y(static_cast<std::size_t>(rows));
+  for (int u = 0; u < cols; ++u) {
+    ray_x[static_cast<std::size_t>(u)] = static_cast<float>((u * step - camera.cx) / camera.fx);
+  }
+  for (int v = 0; v < rows; ++v) {
+    ray_y[static_cast<std::size_t>(v)] = static_cast<float>((v * step - camera.cy) / camera.fy);
+  }
   const float min_depth = static_cast<float>(options.min_depth_m);
   const float max_depth = static_cast<float>(options.max_depth_m);
-  const float step_m = static_cast<float>(options.max_step_m);
-  const float step_relative = static_cast<float>(options.max_step_relative);
+  const float step_m = static_cast<float>(options.max_step_m * step);
+  const float step_relative = static_cast<float>(options.max_step_relative * step);
   const float from_seed = static_cast<float>(options.max_depth_from_seed_m);
-  const double reach = options.max_distance_from_seed_px;
-  const long reach2 = reach > 0 ? static_cast<long>(reach * reach) : -1;
-  const int cols = depth.cols;
-  const int rows = depth.rows;
-  // Breadth-first, so a region cut at max_region_pixels is a compact blob
-  // around its seed. Linear pixel indices; one allocation per call.
+  const auto squared_or_none = [](double metres) {
+    return metres > 0 ? static_cast<float>(metres * metres) : -1.0f;
+  };
+  const int max_pixels = std::max(1, options.max_region_pixels / (step * step));
+  const float reach2[2] = {squared_or_none(options.max_distance_from_seed_m),
+                           squared_or_none(options.static_distance_from_seed_m)};
+
+  cv::Mat owner_kind = cv::Mat::zeros(rows, cols, CV_8UC1);
+  std::uint8_t* kind_of = owner_kind.ptr<std::uint8_t>();
+  // Grid pixel -> its seed; written when a pixel is claimed, read only for
+  // claimed pixels, so it needs no initialisation.
+  const std::unique_ptr<int[]> seed_of(new int[static_cast<std::size_t>(cols) * rows]);
+
+  // One breadth-first fill from all seeds at once: a pixel goes to the fill
+  // that reaches it in the fewest steps. Dynamic seeds are queued first, so
+  // they win ties and a pixel that is both keeps its dynamic evidence.
+  std::vector<Seed> seeds;
+  seeds.reserve(dynamic_seeds.size() + static_seeds.size());
   std::vector<int> queue;
-  queue.reserve(4096);
-  for (const cv::Point2f& seed : seeds) {
-    const int u0 = static_cast<int>(std::lround(seed.x));
-    const int v0 = static_cast<int>(std::lround(seed.y));
-    if (u0 < 0 || u0 >= cols || v0 < 0 || v0 >= rows) continue;
-    if (mask.at<std::uint8_t>(v0, u0) != 0) continue;  // inside an earlier region
-    const float seed_depth = depth.at<float>(v0, u0);
-    if (!(seed_depth >= min_depth && seed_depth <= max_depth)) continue;
-    int region_pixels = 1;
-    mask.at<std::uint8_t>(v0, u0) = 255;
-    queue.clear();
-    queue.push_back(v0 * cols + u0);
-    for (std::size_t head = 0;
-         head < queue.size() && region_pixels < options.max_region_pixels; ++head) {
-      const int index = queue[head];
-      const int u = index % cols;
-      const int v = index / cols;
-      const float d = depth.at<float>(v, u);
-      const float max_step = step_m + step_relative * d;
-      const int neighbours[4][2] = {{u - 1, v}, {u + 1, v}, {u, v - 1}, {u, v + 1}};
-      for (const auto& n : neighbours) {
-        if (n[0] < 0 || n[0] >= cols || n[1] < 0 || n[1] >= rows) continue;
-        std::uint8_t& m = mask.at<std::uint8_t>(n[1], n[0]);
-        if (m != 0) continue;
-        const float dn = depth.at<float>(n[1], n[0]);
-        if (!(dn >= min_depth && dn <= max_depth)) continue;
-        if (std::abs(dn - d) > max_step || std::abs(dn - seed_depth) > from_seed) continue;
-        if (reach2 >= 0) {
-          const long du = n[0] - u0, dv = n[1] - v0;
-          if (du * du + dv * dv > reach2) continue;
-        }
-        m = 255;
-        queue.push_back(n[1] * cols + n[0]);
-        if (++region_pixels >= options.max_region_pixels) break;
+  queue.reserve(1 << 15);
+  const auto add_seeds = [&](const std::vector<cv::Point2f>& pixels, std::uint8_t kind) {
+    for (const cv::Point2f& p : pixels) {
+      const int u = static_cast<int>(std::lround(p.x / static_cast<float>(step)));
+      const int v = static_cast<int>(std::lround(p.y / static_cast<float>(step)));
+      if (u < 0 || u >= cols || v < 0 || v >= rows) continue;
+      const int index = v * cols + u;
+      if (kind_of[index] != kFree) continue;  // an earlier seed's pixel
+      const float z = z_of[static_cast<std::size_t>(index)];
+      if (!(z >= min_depth && z <= max_depth)) continue;
+      kind_of[index] = kind;
+      seed_of[static_cast<std::size_t>(index)] = static_cast<int>(seeds.size());
+      seeds.push_back({ray_x[static_cast<std::size_t>(u)] * z, ray_y[static_cast<std::size_t>(v)] * z,
+                       z, 1});
+      queue.push_back(index);
+    }
+  };
+  add_seeds(dynamic_seeds, kDynamicOwner);
+  if (queue.empty()) return cv::Mat::zeros(depth.size(), CV_8UC1);
+  // Breadth-first levels: [level_end of the previous level, level_end).
+  const int head_start = (options.static_head_start_px + step - 1) / step;
+  bool static_started = !options.static_points_compete;
+  if (!static_started && head_start == 0) {
+    add_seeds(static_seeds, kStaticOwner);
+    static_started = true;
+  }
+  std::size_t level_end = queue.size();
+  int level = 0;
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    if (head == level_end) {
+      ++level;
+      if (!static_started && level >= head_start) {
+        add_seeds(static_seeds, kStaticOwner);
+        static_started = true;
       }
+      level_end = queue.size();
+    }
+    const int index = queue[head];
+    const int v = index / cols;
+    const int u = index - v * cols;
+    const std::uint8_t kind = kind_of[index];
+    const int seed_index = seed_of[static_cast<std::size_t>(index)];
+    Seed& seed = seeds[static_cast<std::size_t>(seed_index)];
+    if (seed.pixels >= max_pixels) continue;
+    const float limit2 = reach2[kind == kDynamicOwner ? 0 : 1];
+    const float d = z_of[static_cast<std::size_t>(index)];
+    const float max_step = step_m + step_relative * d;
+    const int neighbours[4][2] = {{u - 1, v}, {u + 1, v}, {u, v - 1}, {u, v + 1}};
+    for (const auto& [nu, nv] : neighbours) {
+      if (nu < 0 || nu >= cols || nv < 0 || nv >= rows) continue;
+      const int n = nv * cols + nu;
+      if (kind_of[n] != kFree) continue;
+      const float dn = z_of[static_cast<std::size_t>(n)];
+      if (!(dn >= min_depth && dn <= max_depth)) continue;
+      if (std::abs(dn - d) > max_step || std::abs(dn - seed.z) > from_seed) continue;
+      if (limit2 > 0) {
+        const float dx = ray_x[static_cast<std::size_t>(nu)] * dn - seed.x;
+        const float dy = ray_y[static_cast<std::size_t>(nv)] * dn - seed.y;
+        const float dz = dn - seed.z;
+        if (dx * dx + dy * dy + dz * dz > limit2) continue;
+      }
+      kind_of[n] = kind;
+      seed_of[static_cast<std::size_t>(n)] = seed_index;
+      queue.push_back(n);
+      if (++seed.pixels >= max_pixels) break;
     }
   }
-  return mask;
+  cv::Mat grid_mask;
+  cv::compare(owner_kind, kDynamicOwner, grid_mask, cv::CMP_EQ);
+  if (step == 1) return grid_mask;
+  // Each grid pixel stands for its step x step block.
+  cv::Mat mask;
+  cv::resize(grid_mask, mask, cv::Size(cols * step, rows * step), 0, 0, cv::INTER_NEAREST);
+  return mask(cv::Rect(0, 0, depth.cols, depth.rows)).clone();
 }
 
 }  // namespace dlslam::dynamic

@@ -3,10 +3,24 @@
 // depth image: a 4-connected flood fill that crosses from a pixel to its
 // neighbour only when their depths are close, so it stops at depth
 // discontinuities (the silhouette of a person against the background).
+//
+// Where a mover touches the scene (feet on the floor, a hand on a desk) the
+// depth is continuous and a plain fill leaks. Two stops bound that:
+// - static evidence competes: the pixels of points the multi-view test found
+//   static are grown in the same breadth-first fill (after a head start of
+//   the dynamic ones), and a pixel belongs to whichever fill reaches it
+//   first (a geodesic Voronoi split of the depth-continuous surface), so a
+//   dynamic region ends about halfway (plus the head start) to the nearest
+//   static point on the floor or wall;
+// - a size in metres: a pixel joins only within a 3-D distance of its seed's
+//   point (a person is ~0.6 m wide at any range), so a region far from any
+//   static point still stays local; many seeds on a mover cover it.
 
 #include <opencv2/core.hpp>
 
 #include <vector>
+
+#include "dlslam/data/camera.h"
 
 namespace dlslam::dynamic {
 
@@ -20,12 +34,32 @@ struct RegionGrowingOptions {
   // fill leaking along surfaces that touch the object (the floor at the
   // feet); about a person's depth extent.
   double max_depth_from_seed_m = 0.5;
-  // A pixel joins only within this image distance of its region's seed [px]
-  // (0 = no limit): with many seeds on a mover the union still covers it,
-  // while a leak into a touching surface stays local. About a third of a
-  // person's width at 2 m.
-  double max_distance_from_seed_px = 40.0;
-  // Pixels per region at most [px]; a region that reaches it stops growing
+  // A pixel joins only when its 3-D point lies within this distance of its
+  // seed's 3-D point [m] (0 = no limit). Metric, so a region has the same
+  // physical size near and far; with many seeds on a mover the union covers
+  // it, while a leak into a touching surface stays local.
+  double max_distance_from_seed_m = 0.45;
+  // Grow the static points too, and let them claim pixels before a dynamic
+  // fill gets there (static evidence as a barrier).
+  bool static_points_compete = true;
+  // Dynamic fills get this head start [px] before the static points start
+  // to grow: static points within it of a dynamic region are overrun (on a
+  // slowly moving person many points still test static next to the ones
+  // that test dynamic), while static evidence farther out still closes
+  // the floor and walls. 0 = a fair race.
+  int static_head_start_px = 20;
+  // A static fill claims pixels only within this 3-D distance of its point
+  // [m] (0 = no limit); bounds its cost. Smaller values (0.15) were tried so
+  // that a stray static point on a mover would take only a small disc: no
+  // gain on the twins, and the floor then leaks between the discs.
+  double static_distance_from_seed_m = 0.45;
+  // Grow on every pixel_step-th pixel in u and v (1 or 2) and upsample the
+  // result: 2 is 4x faster and only coarsens the outline by a pixel, which
+  // the fusion's dilation covers. The depth steps allowed between grid
+  // neighbours scale with it.
+  int pixel_step = 2;
+  // Image pixels per region at most [px] (counted on the grid, a grid
+  // pixel standing for pixel_step^2); a region that reaches it stops growing
   // (a bad seed cannot flood the whole frame).
   int max_region_pixels = 60000;
   // Valid depths [m].
@@ -36,10 +70,16 @@ struct RegionGrowingOptions {
   void Check() const;
 };
 
-// `depth`: CV_32FC1 metres (0 / NaN = invalid). `seeds`: pixels of dynamic
-// points; seeds on invalid depth are ignored. Returns CV_8UC1, 255 = dynamic,
-// same size as `depth`.
-cv::Mat GrowDynamicRegions(const cv::Mat& depth, const std::vector<cv::Point2f>& seeds,
+// `depth`: CV_32FC1 metres (0 / NaN = invalid), `camera.width` x
+// `camera.height` (its pinhole part unprojects pixels for the metric size
+// limit; distortion is ignored there). `dynamic_seeds`: pixels of dynamic
+// points; `static_seeds`: pixels of static points (barriers; may be empty).
+// Seeds outside the image or on invalid depth are ignored. Returns CV_8UC1,
+// 255 = dynamic, same size as `depth`. Throws dlslam::Error on a depth image
+// of the wrong type or size.
+cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
+                           const std::vector<cv::Point2f>& dynamic_seeds,
+                           const std::vector<cv::Point2f>& static_seeds,
                            const RegionGrowingOptions& options);
 
 }  // namespace dlslam::dynamic

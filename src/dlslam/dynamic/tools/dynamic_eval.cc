@@ -217,6 +217,13 @@ int main(int argc, char** argv) try {
   bool swap = false;
   app.add_flag("--swap", swap, "pairs: frame 1 is the reference, frame 0 the current one");
   app.add_option("--radius", geometry.ant.search_radius_px, "ant colony R [px]");
+  app.add_option("--skip-radius", geometry.ant.static_skip_radius_px, "ant colony static skip radius [px]");
+  app.add_option("--region-reach", geometry.region.max_distance_from_seed_m, "region growing: metres from the seed (0 = no limit)");
+  app.add_option("--static-reach", geometry.region.static_distance_from_seed_m, "region growing: metres a static point claims (0 = no limit)");
+  app.add_option("--head-start", geometry.region.static_head_start_px, "region growing: static points start after [px]");
+  app.add_option("--pixel-step", geometry.region.pixel_step, "region growing grid step (1, 2)");
+  app.add_flag("!--no-static-barriers", geometry.region.static_points_compete, "region growing: static points do not compete");
+  app.add_flag("!--no-vanished-barriers", geometry.vanished_as_barriers, "vanished points are no barriers");
   app.add_option("--band", geometry.ant.band_width_px, "ant colony dh [px]");
   app.add_option("--depth-threshold", geometry.multiview.depth_threshold_m, "th(0) [m]");
   CLI11_PARSE(app, argc, argv);
