@@ -1,5 +1,7 @@
 #include "dlslam/loop/loop_detector.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <unordered_map>
 
@@ -104,7 +106,12 @@ std::optional<LoopMatch> LoopDetector::Verify(const KeyFrameSnapshot& current, c
   const Frame& frame = *current.frame;
   const std::vector<MapPointId> bow_matches =
       place::MatchByBow(frame, features, *loop->frame, *loop_features, loop->points, options_.bow_match);
-  if (CountMatches(bow_matches) < options_.min_bow_matches) return std::nullopt;
+  // Why a candidate fails, at debug level (`dlslam -v run ...`).
+  const auto reject = [&](const char* why, int count) {
+    spdlog::debug("loop candidate {} for keyframe {} rejected: {} ({})", candidate, current.id, why, count);
+    return std::nullopt;
+  };
+  if (CountMatches(bow_matches) < options_.min_bow_matches) return reject("bow matches", CountMatches(bow_matches));
 
   // 3D-3D: the keyframe's own point for the keypoint (or its depth) against
   // the loop side's point.
@@ -131,10 +138,10 @@ std::optional<LoopMatch> LoopDetector::Verify(const KeyFrameSnapshot& current, c
     max_error.push_back(options_.ransac_error_m + options_.ransac_error_per_m2 * z * z);
     keypoint_of.push_back(static_cast<int>(i));
   }
-  if (static_cast<int>(a.size()) < options_.min_bow_matches) return std::nullopt;
+  if (static_cast<int>(a.size()) < options_.min_bow_matches) return reject("3D-3D pairs", static_cast<int>(a.size()));
   const std::optional<RigidRansacResult> fit =
       EstimateRigidRansac(a, b, max_error, options_.ransac, options_.seed + static_cast<std::uint32_t>(current.id));
-  if (!fit) return std::nullopt;
+  if (!fit) return reject("no RANSAC consensus of 3D-3D pairs", static_cast<int>(a.size()));
 
   // b_from_a maps the keyframe's (drifted) world into the loop side's.
   SE3d pose = current.cam_from_world * fit->b_from_a.Inverse();
@@ -142,8 +149,9 @@ std::optional<LoopMatch> LoopDetector::Verify(const KeyFrameSnapshot& current, c
   for (std::size_t j = 0; j < keypoint_of.size(); ++j) {
     if (fit->inliers[j]) matches[keypoint_of[j]] = bow_matches[keypoint_of[j]];
   }
-  if (OptimizeAndPrune(frame, loop_points, options_.pose, &pose, &matches) < options_.ransac.min_inliers / 2) {
-    return std::nullopt;
+  if (const int first = OptimizeAndPrune(frame, loop_points, options_.pose, &pose, &matches);
+      first < options_.ransac.min_inliers / 2) {
+    return reject("inliers of the first pose optimisation", first);
   }
 
   // More matches from the loop side's neighbourhood, seen with the new pose.
@@ -165,7 +173,7 @@ std::optional<LoopMatch> LoopDetector::Verify(const KeyFrameSnapshot& current, c
   search.radius = options_.guided_search_radius;
   SearchByProjection(frame, pose, map_->GetPoints(unmatched_ids), search, &matches);
   const int inliers = OptimizeAndPrune(frame, map_->GetPoints(MatchedIds(matches)), options_.pose, &pose, &matches);
-  if (inliers < options_.min_inliers) return std::nullopt;
+  if (inliers < options_.min_inliers) return reject("inliers after the guided search", inliers);
   return LoopMatch{current.id, candidate, pose, std::move(matches), inliers};
 }
 
