@@ -10,8 +10,9 @@
 #   scripts/dynamic_table.sh [OUT] [FRAMES]     (defaults: dynamic-table, 400)
 #   FRAMES=0 renders every frame time of the real sequence (680-1021 frames).
 # Environment: SEED (default 1), DLSLAM (default build/bin/dlslam),
-# DLSLAM_SHARED_DATA (default ../shared/data), SEQUENCES (default all five).
-# Twins already rendered with the same frame count are reused. Runs niced.
+# DLSLAM_SHARED_DATA (default ../shared/data), SEQUENCES (default all five), RUNS (default all five runs).
+# Twins already rendered with the same frame count, and reports newer than the
+# binary and the twin, are reused. Runs niced.
 set -euo pipefail
 
 OUT=${1:-dynamic-table}
@@ -20,7 +21,7 @@ SEED=${SEED:-1}
 DLSLAM=${DLSLAM:-build/bin/dlslam}
 TUM=${DLSLAM_SHARED_DATA:-../shared/data}/tum
 SEQUENCES=${SEQUENCES:-"sitting_static walking_static walking_xyz walking_rpy walking_halfsphere"}
-RUNS="orb geometry_ant geometry_exhaustive full semantic"
+RUNS=${RUNS:-"orb geometry_ant geometry_exhaustive full semantic"}
 
 [[ -x $DLSLAM ]] || { echo "no $DLSLAM: build first (cmake --build build)" >&2; exit 1; }
 [[ -d $TUM/gt ]] || { echo "no TUM trajectories in $TUM (set DLSLAM_SHARED_DATA)" >&2; exit 1; }
@@ -41,15 +42,20 @@ for seq in $SEQUENCES; do
   twin=$OUT/twin_$seq
   frames_arg=()
   [[ $FRAMES != 0 ]] && frames_arg=(--frames "$FRAMES")
-  have=$( [[ -f $twin/rgb.txt ]] && grep -vc '^#' "$twin/rgb.txt" || echo 0)
-  want=$FRAMES
-  [[ $FRAMES == 0 ]] && want=$(grep -vc '^#' "$TUM/associations/$file")
-  if [[ $have != "$want" ]]; then
+  # The replay drops frame times outside the ground truth's span, so the
+  # twin's frame count can differ from FRAMES: the request is kept beside it.
+  if [[ $(cat "$twin/requested" 2>/dev/null) != "$FRAMES $SEED" ]]; then
     echo "== rendering twin $seq"
     nice -n 10 "$DLSLAM" synth --preset "$seq" --replay "$TUM/gt/$file" --timestamps "$TUM/associations/$file" \
       "${frames_arg[@]}" --seed "$SEED" --out "$twin" >"$OUT/synth_$seq.log" 2>&1
+    echo "$FRAMES $SEED" >"$twin/requested"
   fi
   for run in $RUNS; do
+    # A report newer than the binary and the twin is reused (an interrupted table resumes).
+    if [[ $OUT/$seq.$run.json -nt $DLSLAM && $OUT/$seq.$run.json -nt $twin/rgb.txt ]]; then
+      echo "== $seq $run (reused)"
+      continue
+    fi
     echo "== $seq $run"
     # shellcheck disable=SC2046
     nice -n 10 "$DLSLAM" run --sequence "$twin" --sequential $(run_args "$run") \

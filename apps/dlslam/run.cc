@@ -34,7 +34,7 @@ void LogDynamicSummary(const RunStats& stats) {
                  ToString(d.mode), dynamic::ToString(d.search), d.keypoints_tested, d.keypoints_dynamic,
                  d.keypoints_removed, d.map_points_culled);
   }
-  if (d.frames_with_truth > 0) {
+  if (d.mode != DynamicMode::kOrb && d.frames_with_truth > 0) {
     const auto show = [](const std::optional<double>& v) { return v ? fmt::format("{:.3f}", *v) : "-"; };
     spdlog::info("removed keypoints vs ground truth ({} frames): precision {}, recall {}", d.frames_with_truth,
                  show(d.precision()), show(d.recall()));
