@@ -4,6 +4,7 @@
 # real frame times, ground-truth masks), runs `dlslam run --sequential` in
 # the modes orb, geometry (ant colony and exhaustive search), full and
 # semantic (both with the ground-truth person masks as the semantic prior),
+# and, when asked (RUNS), full_network (our segmentation network as the prior),
 # and writes OUT/table.md: ATE RMSE next to the paper's numbers, precision and
 # recall of the removed keypoints, points tested, geometry time.
 #
@@ -34,6 +35,7 @@ run_args() {
     geometry_exhaustive) echo "--mode geometry --geometry-search exhaustive" ;;
     full) echo "--mode full --geometry-search ant --semantic-masks gt" ;;
     semantic) echo "--mode semantic --semantic-masks gt" ;;
+    full_network) echo "--mode full --geometry-search ant" ;;
   esac
 }
 
@@ -77,15 +79,18 @@ def ate(r):
     return f"{r['ate']['rmse']:.4f}" if r and "ate" in r else "-"
 def num(v, fmt="{:.3f}"):
     return fmt.format(v) if v is not None else "-"
-lines = ["| sequence | ORB-SLAM3 (paper) | DynaSLAM (paper) | paper | ours orb | ours geometry (ant) | ours geometry (exhaustive) | ours full (GT prior) | ours semantic (GT prior) |",
-         "|---|---|---|---|---|---|---|---|---|"]
+labels = {"orb": "ours orb", "geometry_ant": "ours geometry (ant)", "geometry_exhaustive": "ours geometry (exhaustive)",
+          "full": "ours full (GT prior)", "semantic": "ours semantic (GT prior)",
+          "full_network": "ours full (network prior)"}
+lines = ["| sequence | ORB-SLAM3 (paper) | DynaSLAM (paper) | paper | " + " | ".join(labels.get(r, r) for r in runs) + " |",
+         "|---|---|---|---|" + "---|" * len(runs)]
 for seq in sequences:
     p = paper.get(seq, (None,) * 3)
     lines.append(f"| fr3 {seq} | " + " | ".join(num(v, "{:.4f}") for v in p) + " | " +
                  " | ".join(ate(load(seq, run)) for run in runs) + " |")
 lines += ["", "Removed keypoints vs ground truth (precision / recall), points tested by geometry, geometry time per frame:", "",
-          "| sequence | frames | run | precision | recall | points tested | points dynamic | keypoints removed | map points culled | geometry ms median / p95 | frames tracked |",
-          "|---|---|---|---|---|---|---|---|---|---|---|"]
+          "| sequence | frames | run | precision | recall | points tested | points dynamic | keypoints removed | map points culled | geometry ms median / p95 | frames tracked | loops closed |",
+          "|---|---|---|---|---|---|---|---|---|---|---|---|"]
 for seq in sequences:
     for run in runs:
         r = load(seq, run)
@@ -95,7 +100,8 @@ for seq in sequences:
         g = d.get("geometry_ms")
         lines.append(f"| {seq} | {r['frames']} | {run} | {num(d.get('precision'))} | {num(d.get('recall'))} | "
                      f"{d['keypoints_tested']} | {d['keypoints_dynamic']} | {d['keypoints_removed']} | {d['map_points_culled']} | "
-                     f"{num(g['median'], '{:.1f}') + ' / ' + num(g['p95'], '{:.1f}') if g else '-'} | {r['frames_tracked']} |")
+                     f"{num(g['median'], '{:.1f}') + ' / ' + num(g['p95'], '{:.1f}') if g else '-'} | {r['frames_tracked']} | "
+                     f"{r.get('loops_closed', '-')} |")
 text = "\n".join(lines) + "\n"
 open(os.path.join(out, "table.md"), "w").write(text)
 print(text)
