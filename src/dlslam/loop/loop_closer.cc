@@ -34,7 +34,7 @@ void LoopCloser::Start() {
 
 void LoopCloser::Enqueue(KeyFrameId keyframe) {
   if (!thread_.joinable()) {
-    Process(keyframe);
+    ProcessGuarded(keyframe);
     return;
   }
   if (!queue_.TryPush(keyframe)) {
@@ -55,14 +55,16 @@ LoopClosingStats LoopCloser::stats() const {
 }
 
 void LoopCloser::Run() {
-  while (const std::optional<KeyFrameId> keyframe = queue_.Pop()) {
-    try {
-      Process(*keyframe);
-    } catch (const std::exception& e) {
-      // A failed loop must not take tracking down: the map stays as it was
-      // left, which the next loop or bundle adjustment can still repair.
-      spdlog::warn("loop closing at keyframe {} failed: {}", *keyframe, e.what());
-    }
+  while (const std::optional<KeyFrameId> keyframe = queue_.Pop()) ProcessGuarded(*keyframe);
+}
+
+void LoopCloser::ProcessGuarded(KeyFrameId keyframe) {
+  try {
+    Process(keyframe);
+  } catch (const std::exception& e) {
+    // A failed loop must not take tracking down: the map stays as it was
+    // left, which the next loop or bundle adjustment can still repair.
+    spdlog::warn("loop closing at keyframe {} failed: {}", keyframe, e.what());
   }
 }
 

@@ -77,6 +77,8 @@ class LoopCloser {
 
  private:
   void Run();
+  // Process, with a failure logged instead of thrown (in either mode).
+  void ProcessGuarded(KeyFrameId keyframe);
   void Process(KeyFrameId keyframe);
   // Aborts and joins a running global bundle adjustment.
   void AbortGlobalBundle();
