@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "dlslam/util/check.h"
+#include "dlslam/util/cpu_dispatch.h"
 
 namespace dlslam::features {
 namespace {
@@ -19,11 +20,8 @@ struct Nearest {
   int second = std::numeric_limits<int>::max();
 };
 
-// The hot loop: on x86 a clone with the POPCNT instruction (several times faster than
-// the portable bit count) is picked at run time when the CPU has it.
-#if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target_clones("popcnt", "default")))
-#endif
+// The hot loop.
+DLSLAM_POPCNT_CLONES
 Nearest FindNearest(const uchar* descriptor, const cv::Mat& candidates) {
   Nearest n;
   for (int j = 0; j < candidates.rows; ++j) {

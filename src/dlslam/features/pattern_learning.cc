@@ -9,6 +9,7 @@
 #include "dlslam/features/brief_descriptor.h"
 #include "dlslam/features/orb_options.h"
 #include "dlslam/util/check.h"
+#include "dlslam/util/cpu_dispatch.h"
 
 namespace dlslam::features {
 namespace {
@@ -32,11 +33,8 @@ TestOutcomes Outcomes(const OrientedPatches& patches, const PatternTest& test) {
   return t;
 }
 
-// Patches where both tests are 1. The hot loop of the greedy search: on x86
-// a clone with the POPCNT instruction is picked at run time when the CPU has it.
-#if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target_clones("popcnt", "default")))
-#endif
+// Patches where both tests are 1: the hot loop of the greedy search.
+DLSLAM_POPCNT_CLONES
 int CountBoth(const uint64_t* a, const uint64_t* b, size_t n_words) {
   int both = 0;
   for (size_t w = 0; w < n_words; ++w) both += __builtin_popcountll(a[w] & b[w]);
