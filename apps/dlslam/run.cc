@@ -30,9 +30,9 @@ void LogDynamicSummary(const RunStats& stats) {
   const DynamicStats& d = stats.dynamic;
   if (d.mode != DynamicMode::kOrb) {
     spdlog::info("dynamic (mode {}, search {}): {} points tested, {} dynamic, {} keypoints removed, {} map points "
-                 "culled",
+                 "culled, {} moving movable-class segments dropped",
                  ToString(d.mode), dynamic::ToString(d.search), d.keypoints_tested, d.keypoints_dynamic,
-                 d.keypoints_removed, d.map_points_culled);
+                 d.keypoints_removed, d.map_points_culled, d.movable_segments_dropped);
   }
   if (d.mode != DynamicMode::kOrb && d.frames_with_truth > 0) {
     const auto show = [](const std::optional<double>& v) { return v ? fmt::format("{:.3f}", *v) : "-"; };
@@ -48,6 +48,7 @@ RunOutcome RunSequence(const RunArgs& args) {
   options.sequential = args.sequential;
   options.relocalization = !args.no_relocalization;
   options.loop_closing = !args.no_loop;
+  options.dynamic.fusion.drop_moving_movables = !args.no_movables;
   options.vocabulary = args.vocabulary;
   options.mapping.bundle.solver = ParseBundleSolver(args.bundle_solver);
   options.dynamic.mode = ParseDynamicMode(args.mode);
@@ -93,7 +94,7 @@ RunOutcome RunSequence(const RunArgs& args) {
       inputs.semantic_prior = [&] {
         SemanticPrior prior = prior_source->Prior(i, f);
         source_timings.Add("semantic", prior.compute_ms);
-        return prior.mask;
+        return dynamic::SemanticMasks{prior.mask, prior.movable};
       };
     }
     const TrackingResult r = slam.TrackRgbd(f.color, f.depth, f.timestamp, inputs);
@@ -165,8 +166,8 @@ void AddRunCommand(CLI::App& app) {
       ->check(CLI::IsMember({"union", "geometry-confirms", "geometry_confirms", "semantic", "geometry"}));
   cmd->add_option("--semantic-masks", args->semantic_masks,
                   "Semantic prior for modes semantic/full instead of the segmentation network: gt (the "
-                  "sequence's ground-truth masks, class person) or a folder of PNG masks named like the colour "
-                  "images (non-zero = dynamic)");
+                  "sequence's ground-truth masks: class person, and other movable objects as movable) or a "
+                  "folder of PNG masks named like the colour images (non-zero = dynamic)");
   cmd->add_option("--semantic-model", args->semantic_model,
                   "Segmentation network (ONNX) for modes semantic/full; default: the shipped model");
   cmd->add_option("--segment-every", args->segment_every,
@@ -177,6 +178,9 @@ void AddRunCommand(CLI::App& app) {
                 "Run local mapping inline: deterministic, reproducible bit for bit");
   cmd->add_flag("--no-relocalization", args->no_relocalization, "Do not relocalize a lost camera");
   cmd->add_flag("--no-loop", args->no_loop, "Do not close loops (for comparisons)");
+  cmd->add_flag("--no-movables", args->no_movables,
+                "Mode full: keep movable-class segments (chairs) whole even when geometry sees them move "
+                "(only geometry's own region around the moving points goes; for comparisons)");
   cmd->add_option("--vocabulary", args->vocabulary,
                   "Bag-of-words vocabulary (.dlv) for relocalization and loop closing; default: the shipped one");
   cmd->add_option("--bundle-solver", args->bundle_solver,

@@ -31,6 +31,7 @@ nlohmann::ordered_json DynamicReport(const RunStats& stats) {
   j["keypoints_removed"] = d.keypoints_removed;
   j["frames_with_geometry"] = d.frames_with_geometry;
   j["map_points_culled"] = d.map_points_culled;
+  j["movable_segments_dropped"] = d.movable_segments_dropped;
   j["geometry_ms"] = StageSummary(stats, "geometry");
   j["semantic_ms"] = StageSummary(stats, "semantic");
   j["semantic_wait_ms"] = StageSummary(stats, "semantic_wait");

@@ -24,6 +24,7 @@ struct RunArgs {
   bool sequential = false;
   bool no_relocalization = false;  // --no-relocalization
   bool no_loop = false;            // --no-loop
+  bool no_movables = false;        // --no-movables
   std::string vocabulary;          // --vocabulary; "" = the shipped one
   std::string bundle_solver = "lm";  // local bundle adjustment: "lm" or "ceres"
   std::size_t max_frames = 0;

@@ -19,11 +19,16 @@ class GroundTruthPriorSource : public SemanticPriorSource {
     Stopwatch watch;
     SemanticPrior prior;
     // A frame without a mask gets no prior (and no statistics).
-    if (!frame.mask.empty()) prior.mask = ClassMaskFromLabels(frame.mask, synth::kClassPerson);
+    if (!frame.mask.empty()) {
+      prior.mask = ClassMaskFromLabels(frame.mask, synth::kClassPerson);
+      prior.movable = ClassMaskFromLabels(frame.mask, synth::kClassMovable);
+    }
     prior.compute_ms = watch.ElapsedMs();
     return prior;
   }
-  std::string Describe() const override { return "the sequence's ground-truth masks (class person)"; }
+  std::string Describe() const override {
+    return "the sequence's ground-truth masks (class person; movable: other movable objects)";
+  }
 };
 
 class FolderPriorSource : public SemanticPriorSource {
@@ -64,7 +69,7 @@ class NetworkPriorSource : public SemanticPriorSource {
     DLSLAM_CHECK(pending_.valid() && pending_index_ == index, "frame {} was not submitted to the segmentation worker",
                  index);
     const semantic::SegmentationResult& result = pending_.get();
-    return {result.dynamic_mask, result.seconds * 1e3};
+    return {result.dynamic_mask, result.movable_mask, result.seconds * 1e3};
   }
 
   std::string Describe() const override {

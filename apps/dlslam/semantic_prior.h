@@ -4,7 +4,8 @@
 // small interface, so that a network running in its own thread plugs in
 // beside the ground-truth and folder sources:
 //   source->Submit(i, frame);                 // before TrackRgbd: start work
-//   slam.TrackRgbd(..., {[&] { return source->Prior(i, frame).mask; }});
+//   slam.TrackRgbd(..., {[&] { SemanticPrior p = source->Prior(i, frame);
+//                              return dynamic::SemanticMasks{p.mask, p.movable}; }});
 // TrackRgbd calls the deferred Prior after ORB extraction, so a network
 // overlaps with feature extraction and tracking waits only for the rest.
 
@@ -22,6 +23,7 @@ namespace dlslam::app {
 
 struct SemanticPrior {
   cv::Mat mask;             // CV_8UC1, non-zero = a-priori dynamic; empty = none for this frame
+  cv::Mat movable;          // CV_8UC1, non-zero = a movable class (chairs, boxes); empty = none
   double compute_ms = 0.0;  // time the source spent making it (inference, or reading)
 };
 
@@ -39,7 +41,8 @@ class SemanticPriorSource {
 };
 
 // "gt": the sequence's own masks (mask.txt, `dlslam synth`), class-based:
-// every person pixel, moving or not (what a perfect network would give).
+// every person pixel, moving or not (what a perfect network would give), and
+// the "other movable object" class as movable.
 // Otherwise a folder of PNG masks named like the colour images
 // (<rgb file stem>.png, 8-bit, non-zero = dynamic). Throws InputError when
 // the sequence has no masks (gt) or the folder does not exist.

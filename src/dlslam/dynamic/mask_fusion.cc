@@ -31,74 +31,110 @@ FusionPolicy ParseFusionPolicy(const std::string& name) {
 void FusionOptions::Check() const {
   DLSLAM_CHECK_GE(min_static_evidence, 0, "FusionOptions::min_static_evidence");
   DLSLAM_CHECK_GE(max_dynamic_evidence, 0, "FusionOptions::max_dynamic_evidence");
+  DLSLAM_CHECK_GE(movable_dynamic_evidence, 1, "FusionOptions::movable_dynamic_evidence");
   DLSLAM_CHECK(dilation_px >= 0 && dilation_px <= 100,
                "FusionOptions::dilation_px {} outside [0, 100]", dilation_px);
 }
 
 namespace {
 
-// Semantic segments the geometry shows still: a 0/255 mask of the prior's
-// connected components that have enough static and few enough dynamic points.
-cv::Mat StillSegments(const cv::Mat& prior, const GeometryResult& geometry,
-                      const FusionOptions& options) {
-  cv::Mat components;
-  const int count = cv::connectedComponents(prior, components, 8, CV_32S);
-  std::vector<int> static_points(static_cast<std::size_t>(count), 0);
-  std::vector<int> dynamic_points(static_cast<std::size_t>(count), 0);
+// The connected components of a 0/non-zero mask and the geometry's evidence
+// in each: static points, and moving or vanished ones. Label 0 = outside.
+struct Segments {
+  cv::Mat labels;  // CV_32S
+  std::vector<int> static_points, dynamic_points;
+};
+
+Segments CountEvidence(const cv::Mat& mask, const GeometryResult& geometry) {
+  Segments s;
+  const int count = cv::connectedComponents(mask != 0, s.labels, 8, CV_32S);
+  s.static_points.assign(static_cast<std::size_t>(count), 0);
+  s.dynamic_points.assign(static_cast<std::size_t>(count), 0);
   for (std::size_t i = 0; i < geometry.points.size() && i < geometry.labels.size(); ++i) {
     const int u = static_cast<int>(std::lround(geometry.points[i].pixel.x()));
     const int v = static_cast<int>(std::lround(geometry.points[i].pixel.y()));
-    if (u < 0 || v < 0 || u >= components.cols || v >= components.rows) continue;
-    const auto segment = static_cast<std::size_t>(components.at<int>(v, u));
-    if (segment == 0) continue;  // background
+    if (u < 0 || v < 0 || u >= s.labels.cols || v >= s.labels.rows) continue;
+    const auto segment = static_cast<std::size_t>(s.labels.at<int>(v, u));
+    if (segment == 0) continue;  // outside every segment
     const PointLabel label = geometry.labels[i];
-    if (label == PointLabel::kStatic) ++static_points[segment];
-    if (label == PointLabel::kDynamic || label == PointLabel::kVanished) ++dynamic_points[segment];
+    if (label == PointLabel::kStatic) ++s.static_points[segment];
+    if (label == PointLabel::kDynamic || label == PointLabel::kVanished) ++s.dynamic_points[segment];
   }
-  std::vector<std::uint8_t> still(static_cast<std::size_t>(count), 0);
-  for (std::size_t s = 1; s < still.size(); ++s) {
-    still[s] = static_points[s] >= options.min_static_evidence &&
-               dynamic_points[s] <= options.max_dynamic_evidence;
-  }
-  cv::Mat out = cv::Mat::zeros(prior.size(), CV_8UC1);
-  for (int v = 0; v < prior.rows; ++v) {
-    const int* row = components.ptr<int>(v);
+  return s;
+}
+
+// 255 on the segments whose flag is set.
+cv::Mat Paint(const cv::Mat& labels, const std::vector<std::uint8_t>& selected) {
+  cv::Mat out = cv::Mat::zeros(labels.size(), CV_8UC1);
+  for (int v = 0; v < labels.rows; ++v) {
+    const int* row = labels.ptr<int>(v);
     std::uint8_t* out_row = out.ptr<std::uint8_t>(v);
-    for (int u = 0; u < prior.cols; ++u) {
-      if (still[static_cast<std::size_t>(row[u])]) out_row[u] = 255;
+    for (int u = 0; u < labels.cols; ++u) {
+      if (selected[static_cast<std::size_t>(row[u])]) out_row[u] = 255;
     }
   }
   return out;
 }
 
+// Semantic segments the geometry shows still: enough static and few enough
+// dynamic points.
+cv::Mat StillSegments(const cv::Mat& prior, const GeometryResult& geometry, const FusionOptions& options) {
+  const Segments s = CountEvidence(prior, geometry);
+  std::vector<std::uint8_t> still(s.static_points.size(), 0);
+  for (std::size_t i = 1; i < still.size(); ++i) {
+    still[i] = s.static_points[i] >= options.min_static_evidence &&
+               s.dynamic_points[i] <= options.max_dynamic_evidence;
+  }
+  return Paint(s.labels, still);
+}
+
+// Movable segments the geometry shows moving; their count in `dropped`.
+cv::Mat MovingSegments(const cv::Mat& movable, const GeometryResult& geometry, const FusionOptions& options,
+                       int* dropped) {
+  const Segments s = CountEvidence(movable, geometry);
+  std::vector<std::uint8_t> moving(s.dynamic_points.size(), 0);
+  for (std::size_t i = 1; i < moving.size(); ++i) {
+    moving[i] = s.dynamic_points[i] >= options.movable_dynamic_evidence;
+    *dropped += moving[i];
+  }
+  return Paint(s.labels, moving);
+}
+
+// Checks a mask's type and its size against `size` (taken from it when empty).
+void CheckMask(const cv::Mat& mask, const char* what, cv::Size* size) {
+  if (mask.empty()) return;
+  DLSLAM_CHECK(mask.type() == CV_8UC1, "FuseDynamicMasks: {} must be CV_8UC1, got OpenCV type {}", what,
+               mask.type());
+  if (size->empty()) *size = mask.size();
+  DLSLAM_CHECK(mask.size() == *size, "FuseDynamicMasks: {} is {}x{}, the other inputs {}x{}", what, mask.cols,
+               mask.rows, size->width, size->height);
+}
+
 }  // namespace
 
-cv::Mat FuseDynamicMasks(const cv::Mat& semantic_prior, const GeometryResult& geometry,
-                         const FusionOptions& options) {
+cv::Mat FuseDynamicMasks(const SemanticMasks& semantic, const GeometryResult& geometry,
+                         const FusionOptions& options, int* movable_segments_dropped) {
   options.Check();
+  if (movable_segments_dropped != nullptr) *movable_segments_dropped = 0;
   const cv::Mat& geometry_mask = geometry.dynamic_mask;
-  if (!semantic_prior.empty()) {
-    DLSLAM_CHECK(semantic_prior.type() == CV_8UC1,
-                 "FuseDynamicMasks: semantic prior must be CV_8UC1, got OpenCV type {}",
-                 semantic_prior.type());
-  }
-  if (!geometry_mask.empty()) {
-    DLSLAM_CHECK(geometry_mask.type() == CV_8UC1,
-                 "FuseDynamicMasks: geometry mask must be CV_8UC1, got OpenCV type {}",
-                 geometry_mask.type());
-  }
-  if (!semantic_prior.empty() && !geometry_mask.empty()) {
-    DLSLAM_CHECK(semantic_prior.size() == geometry_mask.size(),
-                 "FuseDynamicMasks: semantic prior {}x{} and geometry mask {}x{} differ",
-                 semantic_prior.cols, semantic_prior.rows, geometry_mask.cols, geometry_mask.rows);
-  }
-  if (semantic_prior.empty() && geometry_mask.empty()) return {};
-  const cv::Size size = semantic_prior.empty() ? geometry_mask.size() : semantic_prior.size();
+  cv::Size size;
+  CheckMask(semantic.dynamic, "the semantic prior", &size);
+  CheckMask(semantic.movable, "the movable-class mask", &size);
+  CheckMask(geometry_mask, "the geometry mask", &size);
+  if (size.empty()) return {};
   const cv::Mat zeros = cv::Mat::zeros(size, CV_8UC1);
   cv::Mat prior = zeros.clone();
-  if (!semantic_prior.empty()) prior.setTo(255, semantic_prior != 0);
+  if (!semantic.dynamic.empty()) prior.setTo(255, semantic.dynamic != 0);
   cv::Mat moving = zeros.clone();
   if (!geometry_mask.empty()) moving.setTo(255, geometry_mask != 0);
+  const bool uses_movables = options.drop_moving_movables && !semantic.movable.empty() && !geometry_mask.empty() &&
+                             (options.policy == FusionPolicy::kUnion ||
+                              options.policy == FusionPolicy::kGeometryConfirms);
+  if (uses_movables) {
+    int dropped = 0;
+    moving |= MovingSegments(semantic.movable, geometry, options, &dropped);
+    if (movable_segments_dropped != nullptr) *movable_segments_dropped = dropped;
+  }
 
   cv::Mat fused;
   switch (options.policy) {

@@ -55,12 +55,14 @@ void DynamicStage::Process(Frame* frame, const cv::Mat& depth, const DynamicInpu
   stats_.keypoints_total += static_cast<std::int64_t>(frame->size());
   for (std::size_t i = 0; i < frame->size(); ++i) frame->SetIgnored(i, false);
   if (options_.mode != DynamicMode::kOrb) {
-    const cv::Mat prior = UsesSemanticPrior(options_.mode) ? SemanticPrior(inputs) : cv::Mat();
+    const dynamic::SemanticMasks prior =
+        UsesSemanticPrior(options_.mode) ? SemanticPrior(inputs) : dynamic::SemanticMasks{};
     dynamic::GeometryResult geometry;  // empty mask: the check did not run
     if (UsesGeometry(options_.mode) && !depth.empty()) {
       // The first pose estimate must not lean on what the network already
-      // knows to move: flag the prior's keypoints while estimating.
-      if (!prior.empty()) frame->IgnoreMasked(prior);
+      // knows to move: flag the prior's keypoints while estimating (movable
+      // objects are mostly still: they stay in).
+      if (!prior.dynamic.empty()) frame->IgnoreMasked(prior.dynamic);
       Stopwatch watch;
       geometry = DetectGeometrically(*frame, depth);
       timings_->Add("geometry", watch.ElapsedMs());
@@ -69,21 +71,27 @@ void DynamicStage::Process(Frame* frame, const cv::Mat& depth, const DynamicInpu
     dynamic::FusionOptions fusion = options_.fusion;
     if (options_.mode == DynamicMode::kSemantic) fusion.policy = dynamic::FusionPolicy::kSemanticOnly;
     if (options_.mode == DynamicMode::kGeometry) fusion.policy = dynamic::FusionPolicy::kGeometryOnly;
-    const cv::Mat removal = dynamic::FuseDynamicMasks(prior, geometry, fusion);
+    int movables_dropped = 0;
+    const cv::Mat removal = dynamic::FuseDynamicMasks(prior, geometry, fusion, &movables_dropped);
+    stats_.movable_segments_dropped += movables_dropped;
     if (!removal.empty()) stats_.keypoints_removed += frame->IgnoreMasked(removal);
   }
   if (!inputs.moving_truth.empty()) CountAgainstTruth(*frame, inputs.moving_truth);
 }
 
-cv::Mat DynamicStage::SemanticPrior(const DynamicInputs& inputs) {
+dynamic::SemanticMasks DynamicStage::SemanticPrior(const DynamicInputs& inputs) {
   if (!inputs.semantic_prior) return {};
   Stopwatch watch;
-  cv::Mat prior = inputs.semantic_prior();
+  dynamic::SemanticMasks prior = inputs.semantic_prior();
   timings_->Add("semantic_wait", watch.ElapsedMs());
-  if (prior.empty()) return prior;
-  DLSLAM_CHECK(prior.type() == CV_8UC1 && prior.cols == camera_.width && prior.rows == camera_.height,
-               "the semantic prior must be 8-bit single-channel {}x{}, got type {} {}x{}", camera_.width,
-               camera_.height, prior.type(), prior.cols, prior.rows);
+  const auto check = [this](const cv::Mat& mask, const char* what) {
+    if (mask.empty()) return;
+    DLSLAM_CHECK(mask.type() == CV_8UC1 && mask.cols == camera_.width && mask.rows == camera_.height,
+                 "the {} must be 8-bit single-channel {}x{}, got type {} {}x{}", what, camera_.width, camera_.height,
+                 mask.type(), mask.cols, mask.rows);
+  };
+  check(prior.dynamic, "semantic prior");
+  check(prior.movable, "movable-class mask");
   return prior;
 }
 

@@ -21,12 +21,13 @@ namespace dlslam {
 
 // What the caller adds to a frame for the dynamic stage.
 struct DynamicInputs {
-  // The semantic a-priori mask (CV_8UC1, the colour image's size, non-zero =
-  // a class that may move, e.g. people), deferred: called once per frame,
-  // after ORB extraction, only in modes semantic and full. It may block
-  // until a segmentation thread has the mask (the wait is timed as stage
-  // "semantic_wait"). Empty function or empty Mat: no prior for this frame.
-  std::function<cv::Mat()> semantic_prior;
+  // The segmentation of the frame (dynamic::SemanticMasks: a-priori dynamic
+  // classes such as people, and movable ones such as chairs; CV_8UC1 at the
+  // colour image's size), deferred: called once per frame, after ORB
+  // extraction, only in modes semantic and full. It may block until a
+  // segmentation thread has the masks (the wait is timed as stage
+  // "semantic_wait"). Empty function or empty masks: no prior for this frame.
+  std::function<dynamic::SemanticMasks()> semantic_prior;
   // Ground truth for statistics only (CV_8UC1, non-zero = moving); empty =
   // none. Never used to decide anything.
   cv::Mat moving_truth;
@@ -43,6 +44,7 @@ struct DynamicStats {
   std::int64_t keypoints_removed = 0;  // frame keypoints ignored (prior, geometry or both)
   std::int64_t frames_with_geometry = 0;  // frames the geometric check ran on
   std::int64_t map_points_culled = 0;     // vanished map points removed from the map
+  std::int64_t movable_segments_dropped = 0;  // movable-class segments geometry saw move, dropped whole
   // Per keypoint of every frame with ground truth: removed and moving (true
   // positive), removed and still (false positive), kept and moving (false negative).
   std::int64_t frames_with_truth = 0;
@@ -73,7 +75,7 @@ class DynamicStage {
   const DynamicStats& stats() const { return stats_; }
 
  private:
-  cv::Mat SemanticPrior(const DynamicInputs& inputs);
+  dynamic::SemanticMasks SemanticPrior(const DynamicInputs& inputs);
   // The multi-view check with the tracker's first pose estimate; a result
   // with an empty mask when it cannot run (not tracking, no keyframe).
   dynamic::GeometryResult DetectGeometrically(const Frame& frame, const cv::Mat& depth);

@@ -53,7 +53,11 @@ TEST_F(DynamicStageTest, SemanticModeRemovesThePriorAndCountsAgainstTruth) {
   DynamicStage stage = MakeStage(DynamicMode::kSemantic);
   auto frame = GridFrame();
   DynamicInputs inputs;
-  inputs.semantic_prior = [] { return Rectangle(100, 100, 300, 200); };
+  // Movable objects are static structure until geometry sees them move:
+  // without geometry (this mode) they stay.
+  inputs.semantic_prior = [] {
+    return dynamic::SemanticMasks{Rectangle(100, 100, 300, 200), Rectangle(400, 300, 600, 400)};
+  };
   inputs.moving_truth = Rectangle(200, 100, 400, 200);
   stage.Process(frame.get(), cv::Mat(), inputs);
   const int removed = GridPointsIn(100, 100, 300, 200);
@@ -79,7 +83,7 @@ TEST_F(DynamicStageTest, RemovalMaskIsDilated) {
   auto frame = GridFrame();
   DynamicInputs inputs;
   // Ends 3 px left of the column of keypoints at x = 208: dilation reaches it.
-  inputs.semantic_prior = [] { return Rectangle(100, 100, 205, 200); };
+  inputs.semantic_prior = [] { return dynamic::SemanticMasks{Rectangle(100, 100, 205, 200)}; };
   stage.Process(frame.get(), cv::Mat(), inputs);
   EXPECT_EQ(stage.stats().keypoints_removed, GridPointsIn(100, 100, 209, 200));
 }
@@ -92,7 +96,7 @@ TEST_F(DynamicStageTest, OrbModeRemovesNothingAndNeverAsksForThePrior) {
   DynamicInputs inputs;
   inputs.semantic_prior = [&asked] {
     asked = true;
-    return Rectangle(0, 0, 640, 480);
+    return dynamic::SemanticMasks{Rectangle(0, 0, 640, 480)};
   };
   inputs.moving_truth = Rectangle(200, 100, 400, 200);
   stage.Process(frame.get(), cv::Mat(), inputs);
@@ -118,9 +122,13 @@ TEST_F(DynamicStageTest, BadMasksAreErrors) {
   DynamicStage stage = MakeStage(DynamicMode::kFull);
   auto frame = GridFrame();
   DynamicInputs inputs;
-  inputs.semantic_prior = [] { return cv::Mat(240, 320, CV_8UC1, cv::Scalar(0)); };
+  inputs.semantic_prior = [] { return dynamic::SemanticMasks{cv::Mat(240, 320, CV_8UC1, cv::Scalar(0))}; };
   EXPECT_THROW(stage.Process(frame.get(), cv::Mat(), inputs), Error);
-  inputs.semantic_prior = [] { return cv::Mat(480, 640, CV_16UC1, cv::Scalar(0)); };
+  inputs.semantic_prior = [] { return dynamic::SemanticMasks{cv::Mat(480, 640, CV_16UC1, cv::Scalar(0))}; };
+  EXPECT_THROW(stage.Process(frame.get(), cv::Mat(), inputs), Error);
+  inputs.semantic_prior = [] {
+    return dynamic::SemanticMasks{cv::Mat(480, 640, CV_8UC1, cv::Scalar(0)), cv::Mat(480, 600, CV_8UC1, cv::Scalar(0))};
+  };
   EXPECT_THROW(stage.Process(frame.get(), cv::Mat(), inputs), Error);
   inputs.semantic_prior = nullptr;
   inputs.moving_truth = cv::Mat(480, 640, CV_8UC3, cv::Scalar(0));

@@ -66,7 +66,9 @@ SlamSystem::~SlamSystem() { Shutdown(); }
 TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth, double timestamp,
                                      const cv::Mat& semantic_prior) {
   DynamicInputs inputs;
-  if (!semantic_prior.empty()) inputs.semantic_prior = [&semantic_prior] { return semantic_prior; };
+  if (!semantic_prior.empty()) {
+    inputs.semantic_prior = [&semantic_prior] { return dynamic::SemanticMasks{semantic_prior}; };
+  }
   return TrackRgbd(colour, depth, timestamp, inputs);
 }
 

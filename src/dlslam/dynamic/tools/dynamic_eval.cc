@@ -165,7 +165,7 @@ void RunPair(const PairRun& pair, const CameraIntrinsics& camera, const Geometry
     GeometryDetector detector(o);
     const GeometryResult r =
         detector.Detect(pair.depth1, camera, pair.world_from_cam1.Inverse(), {reference});
-    const cv::Mat mask = FuseDynamicMasks(cv::Mat(), r, evaluation::SynthEvalOptions{}.fusion);
+    const cv::Mat mask = FuseDynamicMasks({}, r, evaluation::SynthEvalOptions{}.fusion);
     fmt::print("{:<24} {:<10} projected {:4d} tested {:4d} dynamic {:4d} vanished {:4d} mask {:5.1f}%\n",
                pair.name, ToString(kind), r.points_projected, r.points_tested, r.points_dynamic,
                r.points_vanished, 100.0 * cv::countNonZero(mask) / static_cast<double>(mask.total()));

@@ -117,7 +117,7 @@ SynthEvalStats EvaluateOnSynth(SynthFrameCache& cache, const GeometryOptions& ge
                                             current.rendered.world_from_cam.Inverse(), references);
     stats.detect_ms +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    const cv::Mat mask = FuseDynamicMasks(cv::Mat(), result, options.fusion);
+    const cv::Mat mask = FuseDynamicMasks({}, result, options.fusion);
     stats.scores += ScoreKeypoints(mask, current.keypoints, current.moving);
     stats.points_projected += result.points_projected;
     stats.points_tested += result.points_tested;
