@@ -25,4 +25,11 @@ export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$supp/
 # the 60-frame fixture, then runs SLAM once or twice) take ~55 s on 2 idle
 # cores and up to ~280 s on 2 cores shared with other builds.
 # The training tests (label python) run no C++ code: skipped here.
-ctest --test-dir "$dir" --output-on-failure --parallel "$(nproc)" --timeout 600 --label-exclude python "$@"
+# Under TSan, LoopPresetTest.ClosesTheLoopAtTheRightPoseAndReducesDrift (two
+# 1125-frame runs with every thread's work done on the calling thread, 55 s in
+# a plain build) passes the 10-minute limit; it has no threads to check, and
+# its threaded twin ClosesTheLoopWithTheThreads runs (~6.5 min).
+skip=()
+[[ $kind == thread ]] && skip=(--exclude-regex 'LoopPresetTest\.ClosesTheLoopAtTheRightPoseAndReducesDrift')
+ctest --test-dir "$dir" --output-on-failure --parallel "$(nproc)" --timeout 600 --label-exclude python \
+  "${skip[@]}" "$@"

@@ -190,5 +190,34 @@ TEST_F(RunCliTest, FolderPriorEqualsTheGroundTruthPrior) {
   EXPECT_EQ(gt.at("keypoints_tested"), 0);  // no geometry in mode semantic
 }
 
+// `dlslam bench`: every mode asked for, timed stage by stage, in bench.json.
+TEST_F(RunCliTest, BenchTimesEachModeAndWritesJson) {
+  const CliRun run = Cli("bench --sequence " + Quoted(Walk()) + " --modes orb,geometry --sequential --out " +
+                         Quoted(out_ / "bench"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, AllOf(HasSubstr("frame_total"), HasSubstr("real-time factor"), HasSubstr("geometry")));
+  nlohmann::json j;
+  std::ifstream(out_ / "bench" / "bench.json") >> j;
+  ASSERT_EQ(j.at("runs").size(), 2u);
+  EXPECT_EQ(j.at("threads"), "sequential");
+  for (const nlohmann::json& r : j.at("runs")) {
+    EXPECT_EQ(r.at("frames"), 40);
+    EXPECT_EQ(r.at("stages_ms").at("frame_total").at("count"), 40);
+    EXPECT_GT(r.at("stages_ms").at("orb_extraction").at("median").get<double>(), 0.0);
+    EXPECT_GT(r.at("realtime_factor").get<double>(), 0.0);
+    EXPECT_TRUE(r.at("ate_rmse").is_number());
+  }
+  EXPECT_EQ(j.at("runs")[1].at("mode"), "geometry");
+  EXPECT_GT(j.at("runs")[1].at("stages_ms").at("geometry").at("count").get<int>(), 0);
+  EXPECT_TRUE(fs::exists(out_ / "bench" / "orb_report.json"));
+}
+
+TEST_F(RunCliTest, BenchRefusesUnknownModes) {
+  const CliRun run = Cli("bench --sequence " + Quoted(Walk()) + " --modes orb,dyna --out " + Quoted(out_ / "b"));
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_THAT(run.output, HasSubstr("unknown mode 'dyna'")) << run.output;
+  EXPECT_FALSE(fs::exists(out_ / "b" / "bench.json"));
+}
+
 }  // namespace
 }  // namespace dlslam

@@ -14,8 +14,6 @@
 #include "commands.h"
 #include "dlslam/eval/plot.h"
 #include "dlslam/io/file_util.h"
-#include "dlslam/io/sequence_writer.h"
-#include "dlslam/io/text_table.h"
 #include "run_sequence.h"
 #include "synth_run.h"
 
@@ -31,12 +29,6 @@ struct DemoArgs {
   std::uint32_t seed = 1;
 };
 
-// A folder we rendered before with the same number of frames.
-bool AlreadyRendered(const fs::path& dir, int frames) {
-  if (!fs::exists(dir / io::SequenceWriter::kMarkerFile) || !fs::exists(dir / "rgb.txt")) return false;
-  return static_cast<int>(io::ReadTextTable(dir / "rgb.txt").rows.size()) == frames;
-}
-
 void RunDemo(const DemoArgs& args) {
   fs::create_directories(args.out);
   struct Row {
@@ -50,16 +42,12 @@ void RunDemo(const DemoArgs& args) {
       {"static", "orb"}, {"walking_xyz", "orb"}, {"walking_xyz", "geometry"}};
   for (const auto& [preset, mode] : runs) {
     const fs::path sequence = args.out / preset;
-    if (AlreadyRendered(sequence, args.frames)) {
-      spdlog::info("reusing the rendered sequence {}", sequence.string());
-    } else {
-      SynthArgs synth;
-      synth.preset = preset;
-      synth.frames = args.frames;
-      synth.seed = args.seed;
-      synth.out = sequence;
-      RunSynth(synth, /*frames_given=*/true);
-    }
+    SynthArgs synth;
+    synth.preset = preset;
+    synth.frames = args.frames;
+    synth.seed = args.seed;
+    synth.out = sequence;
+    RenderUnlessDone(synth);
     RunArgs run;
     run.sequence = sequence;
     run.mode = mode;

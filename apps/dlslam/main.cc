@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   dlslam::app::AddDatasetCommand(app);
   dlslam::app::AddVocabCommand(app);
   dlslam::app::AddSegmentCommand(app);
+  dlslam::app::AddBenchCommand(app);
 
   try {
     app.parse(argc, argv);

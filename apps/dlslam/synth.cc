@@ -131,4 +131,16 @@ void AddSynthCommand(CLI::App& app) {
   cmd->callback([args, frames] { RunSynth(*args, frames->count() > 0); });
 }
 
+void RenderUnlessDone(const SynthArgs& args) {
+  const std::filesystem::path& dir = args.out;
+  const bool done = std::filesystem::exists(dir / io::SequenceWriter::kMarkerFile) &&
+                    std::filesystem::exists(dir / "rgb.txt") &&
+                    static_cast<int>(io::ReadTextTable(dir / "rgb.txt").rows.size()) == args.frames;
+  if (done) {
+    spdlog::info("reusing the rendered sequence {}", dir.string());
+    return;
+  }
+  RunSynth(args, /*frames_given=*/true);
+}
+
 }  // namespace dlslam::app

@@ -24,4 +24,8 @@ struct SynthArgs {
 // command line (a replay otherwise takes every frame time).
 void RunSynth(const SynthArgs& args, bool frames_given);
 
+// Renders `args.out` unless a folder we rendered before with the same number
+// of frames is there (then logs that it is reused).
+void RenderUnlessDone(const SynthArgs& args);
+
 }  // namespace dlslam::app
