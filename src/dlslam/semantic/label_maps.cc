@@ -89,11 +89,19 @@ SegmentationResult ResultFromLabels(const cv::Mat& network_labels, cv::Size fram
 SegmentationResult PropagateResult(const SegmentationResult& segmented, int gap, int grow_px_per_frame) {
   DLSLAM_CHECK_GE(gap, 0, "frames since the segmented one");
   DLSLAM_CHECK_GE(grow_px_per_frame, 0, "propagation growth [px per frame]");
-  SegmentationResult result = segmented;
-  result.dynamic_mask = DilateMask(segmented.dynamic_mask, gap * grow_px_per_frame);
+  SegmentationResult result = DeepCopy(segmented);
+  if (gap * grow_px_per_frame > 0) result.dynamic_mask = DilateMask(segmented.dynamic_mask, gap * grow_px_per_frame);
   result.propagated_from = gap;
   result.seconds = 0.0;
   return result;
+}
+
+SegmentationResult DeepCopy(const SegmentationResult& result) {
+  SegmentationResult copy = result;
+  copy.labels = result.labels.clone();
+  copy.dynamic_mask = result.dynamic_mask.clone();
+  copy.movable_mask = result.movable_mask.clone();
+  return copy;
 }
 
 }  // namespace dlslam::semantic

@@ -32,7 +32,11 @@ SegmentationResult ResultFromLabels(const cv::Mat& network_labels, cv::Size fram
 
 // A result for a frame `gap` frames after `segmented` (which was segmented
 // itself): same labels, dynamic mask grown by gap * grow_px_per_frame more.
+// Shares no pixel memory with `segmented`.
 SegmentationResult PropagateResult(const SegmentationResult& segmented, int gap,
                                    int grow_px_per_frame);
+
+// A copy that shares no pixel memory with `result` (cv::Mat copies share it).
+SegmentationResult DeepCopy(const SegmentationResult& result);
 
 }  // namespace dlslam::semantic

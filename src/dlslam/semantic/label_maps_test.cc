@@ -124,6 +124,12 @@ TEST(PropagateResult, GrowsTheDynamicMaskWithTheGap) {
   EXPECT_EQ(later.dynamic_mask.at<uchar>(15, 10 - 7), 0);
   EXPECT_EQ(cv::countNonZero(later.labels != segmented.labels), 0);
   EXPECT_EQ(cv::countNonZero(segmented.dynamic_mask), 100);  // the source is untouched
+  // Propagated results own their pixels (they go to another thread).
+  for (const SegmentationResult* r : {&same, &later}) {
+    EXPECT_NE(r->labels.data, segmented.labels.data);
+    EXPECT_NE(r->dynamic_mask.data, segmented.dynamic_mask.data);
+    EXPECT_NE(r->movable_mask.data, segmented.movable_mask.data);
+  }
 }
 
 }  // namespace

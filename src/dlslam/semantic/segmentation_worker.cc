@@ -53,7 +53,11 @@ SegmentationResult SegmentationWorker::Process(const Job& job) {
     // segmented itself rather than given an older frame's mask.
     last_.reset();
     SegmentationResult result = segmenter_->Segment(job.bgr);
-    last_ = result;
+    // The worker's reference copy and every result it hands out own their
+    // pixels: a shared cv::Mat buffer would be freed by whichever thread lets
+    // go last, synchronised only by OpenCV's reference count (atomics inside
+    // a library ThreadSanitizer cannot see, so it reports a race).
+    last_ = DeepCopy(result);
     last_index_ = job.index;
     return result;
   }
