@@ -81,7 +81,7 @@ std::vector<std::string> StageOrder(const std::vector<ModeRun>& runs) {
   static const std::vector<std::string> kKnown = {
       "orb_extraction", "semantic", "semantic_wait", "geometry", "tracking", "frame_total",
       "keyframe_handover", "keyframe_bow", "local_mapping", "triangulation", "fusion", "local_bundle_adjustment",
-      "loop_detection", "loop_correction", "global_bundle_adjustment"};
+      "loop_detection", "loop_wait_for_mapping", "loop_correction", "global_bundle_adjustment"};
   std::vector<std::string> order;
   for (const std::string& stage : kKnown) {
     for (const ModeRun& r : runs) {

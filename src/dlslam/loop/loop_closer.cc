@@ -85,7 +85,9 @@ void LoopCloser::Process(KeyFrameId keyframe) {
   watch = Stopwatch();
   LoopCorrection correction;
   {
-    const std::unique_lock paused = mapper_->Pause();
+    const PauseGate::Hold paused = mapper_->Pause();
+    if (timings_) timings_->Add("loop_wait_for_mapping", watch.ElapsedMs());
+    watch = Stopwatch();
     correction = CloseLoop(map_, loop, options_.correction);
   }
   if (timings_) timings_->Add("loop_correction", watch.ElapsedMs());
@@ -131,7 +133,7 @@ void LoopCloser::RunGlobalBundle() {
       return;
     }
     {
-      const std::unique_lock paused = mapper_->Pause();
+      const PauseGate::Hold paused = mapper_->Pause();
       map_->ApplyGlobalBundle(bundle, summary.outlier);
     }
     if (timings_) timings_->Add("global_bundle_adjustment", watch.ElapsedMs());

@@ -38,11 +38,11 @@ void LocalMapper::Enqueue(KeyFrameId keyframe) {
   queue_.Push(keyframe);
 }
 
-std::unique_lock<std::mutex> LocalMapper::Pause() { return std::unique_lock(pause_mutex_); }
+PauseGate::Hold LocalMapper::Pause() { return pause_gate_.Pause(); }
 
 void LocalMapper::ProcessAndHandOver(KeyFrameId keyframe) {
   {
-    const std::lock_guard lock(pause_mutex_);
+    const PauseGate::Hold step = pause_gate_.BeginStep();
     Process(keyframe);
   }
   if (hooks_.processed) hooks_.processed(keyframe);

@@ -16,6 +16,7 @@
 #include "dlslam/mapping/triangulation.h"
 #include "dlslam/optimize/bundle_adjuster.h"
 #include "dlslam/util/bounded_queue.h"
+#include "dlslam/util/pause_gate.h"
 #include "dlslam/util/timing.h"
 
 namespace dlslam {
@@ -60,7 +61,7 @@ struct LocalMappingStats {
 struct KeyFrameHooks {
   std::function<void(const KeyFrameSnapshot&)> added;
   std::function<void(KeyFrameId)> culled;
-  // After a keyframe is finished, outside the pause lock (loop closing
+  // After a keyframe is finished, outside its pause-gate step (loop closing
   // hands itself the keyframe here, and may pause the mapper inline).
   std::function<void(KeyFrameId)> processed;
 };
@@ -80,14 +81,15 @@ class LocalMapper {
   // Finishes the queued keyframes, then joins the thread.
   void Stop();
   // Holds local mapping between two keyframes for as long as the returned
-  // lock lives (waits for the keyframe in progress): loop closing moves the
-  // map meanwhile. Tracking is not held; keyframes queue up.
-  [[nodiscard]] std::unique_lock<std::mutex> Pause();
+  // hold lives (waits for the keyframe in progress, never for the queued
+  // ones): loop closing moves the map meanwhile. Tracking is not held;
+  // keyframes queue up.
+  [[nodiscard]] PauseGate::Hold Pause();
 
   LocalMappingStats stats() const;
 
  private:
-  // Process under the pause lock, then the `processed` hook.
+  // Process as one step of the pause gate, then the `processed` hook.
   void ProcessAndHandOver(KeyFrameId keyframe);
   void Process(KeyFrameId keyframe);
   void Run();
@@ -98,7 +100,7 @@ class LocalMapper {
   KeyFrameHooks hooks_;
   BoundedQueue<KeyFrameId> queue_;
   std::thread thread_;
-  std::mutex pause_mutex_;  // held while a keyframe is processed
+  PauseGate pause_gate_;  // a keyframe's processing is one step
   mutable std::mutex stats_mutex_;
   LocalMappingStats stats_;
 };
