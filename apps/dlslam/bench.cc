@@ -40,6 +40,7 @@ struct BenchArgs {
   std::size_t max_frames = 0;
   std::string modes = "orb,geometry,full";
   bool sequential = false;
+  int segment_every = 1;              // modes semantic, full: segment every k-th frame
   double camera_hz = 30.0;            // the frame budget is 1000 / camera_hz ms
   fs::path out = "dlslam-bench";
   io::RgbdSequenceOptions sequence_options;
@@ -142,6 +143,7 @@ nlohmann::ordered_json Json(const BenchArgs& args, const fs::path& sequence, con
   nlohmann::ordered_json j;
   j["sequence"] = sequence.string();
   j["threads"] = args.sequential ? "sequential" : "threaded";
+  j["segment_every"] = args.segment_every;
   j["budget_ms"] = budget_ms;
   j["cores"] = std::thread::hardware_concurrency();
   j["load_average_before"] = load_before ? nlohmann::ordered_json(*load_before) : nlohmann::ordered_json();
@@ -191,6 +193,7 @@ void RunBench(const BenchArgs& args) {
     run.sequence_options = args.sequence_options;
     run.mode = mode;
     run.sequential = args.sequential;
+    run.segment_every = args.segment_every;
     run.max_frames = args.max_frames;
     run.out = args.out / (mode + "_trajectory.txt");
     run.report = args.out / (mode + "_report.json");
@@ -225,6 +228,10 @@ void AddBenchCommand(CLI::App& app) {
   cmd->add_option("--max-frames", args->max_frames, "Stop each run after this many frames (0 = all)");
   cmd->add_option("--modes", args->modes, "Comma-separated modes: orb, semantic, geometry, full")->capture_default_str();
   cmd->add_flag("--sequential", args->sequential, "Run local mapping inline (default: threaded, as deployed)");
+  cmd->add_option("--segment-every", args->segment_every,
+                  "Modes semantic, full: segment every k-th frame, propagating the mask to the frames between")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
   cmd->add_option("--camera-hz", args->camera_hz, "Camera frame rate: the budget per frame is 1000 / Hz ms")
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output folder: bench.json, per-mode reports and trajectories")
