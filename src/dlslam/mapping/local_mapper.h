@@ -87,6 +87,8 @@ class LocalMapper {
   [[nodiscard]] PauseGate::Hold Pause();
 
   LocalMappingStats stats() const;
+  // Keyframes handed over and not yet taken on (the one in progress excluded).
+  std::size_t backlog() const { return queue_.size(); }
 
  private:
   // Process as one step of the pause gate, then the `processed` hook.

@@ -57,6 +57,7 @@ SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& opti
     loop_closer_ = std::make_unique<LoopCloser>(options_.loop, &map_, index_.get(), &mapper_, &timings_);
   }
   if (options_.sequential) return;
+  tracker_.SetMappingBacklog([this] { return mapper_.backlog(); });
   mapper_.Start();
   if (loop_closer_) loop_closer_->Start();
 }

@@ -19,6 +19,7 @@ void TrackerOptions::Check() const {
   DLSLAM_CHECK_GT(close_depth, 0.0);
   DLSLAM_CHECK(keyframe_tracked_ratio > 0 && keyframe_tracked_ratio <= 1);
   DLSLAM_CHECK_GT(max_frames_between_keyframes, 0);
+  DLSLAM_CHECK_GT(max_mapping_backlog, 0);
   DLSLAM_CHECK_GE(min_new_points, 0);
   pose.Check();
   relocalization.Check();
@@ -211,6 +212,7 @@ void Tracker::RememberPose(const SE3d& pose, KeyFrameId reference, std::uint64_t
 
 bool Tracker::NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches,
                               KeyFrameId reference) const {
+  if (mapping_backlog_ && mapping_backlog_() >= static_cast<std::size_t>(options_.max_mapping_backlog)) return false;
   const int reference_tracked = map_->TrackedPoints(reference, map_->NumKeyFrames() <= 2 ? 2 : 3);
   const int tracked = CountMatches(matches);
   // Close keypoints: tracked ones anchor the pose; untracked ones would make good new points.

@@ -12,6 +12,7 @@
 // relocalize against the whole map (relocalizer.h, when the tracker has a
 // keyframe index), then the last reference keyframe.
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -48,6 +49,9 @@ struct TrackerOptions {
   double keyframe_tracked_ratio = 0.75;
   // ... or after this many frames (about a second of video).
   int max_frames_between_keyframes = 30;
+  // No new keyframe while this many wait for local mapping (ORB-SLAM: 3): it
+  // would only wait in the queue, and tracking with it (SetMappingBacklog).
+  int max_mapping_backlog = 3;
   // A keyframe creates points for its closest unmatched keypoints with depth:
   // all closer than close_depth, and at least this many.
   int min_new_points = 100;
@@ -94,6 +98,10 @@ class Tracker {
   // stage uses it to test keypoints before the frame is tracked.
   std::optional<SE3d> EstimatePose(const Frame& frame) const;
 
+  // How many keyframes wait for local mapping; unset = none. Called on the
+  // tracking thread for every keyframe decision, so it must be cheap.
+  void SetMappingBacklog(std::function<std::size_t()> backlog) { mapping_backlog_ = std::move(backlog); }
+
   TrackingState state() const { return state_; }
   // The keyframe the last tracked frame shares most points with.
   KeyFrameId reference_keyframe() const { return reference_keyframe_; }
@@ -121,6 +129,7 @@ class Tracker {
 
   TrackerOptions options_;
   Map* map_;
+  std::function<std::size_t()> mapping_backlog_;
   std::optional<Relocalizer> relocalizer_;
   TrackingState state_ = TrackingState::kNotInitialized;
   // The last tracked frame: its pose, matched points and the motion into it.

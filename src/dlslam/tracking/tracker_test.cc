@@ -44,6 +44,25 @@ TEST(Tracker, FollowsASmoothPathAccurately) {
   EXPECT_EQ(static_cast<int>(map.NumKeyFrames()), keyframes);
 }
 
+// While local mapping has a backlog, a keyframe would only wait in its queue
+// (and tracking with it): none is made until the backlog drains.
+TEST(Tracker, MakesNoKeyFrameWhileMappingIsBackedUp) {
+  const auto scene = testing::LandmarkScene::Room(6000, 3);
+  Map map;
+  Tracker tracker(TrackerOptions(), &map);
+  std::size_t backlog = 0;
+  tracker.SetMappingBacklog([&backlog] { return backlog; });
+  int keyframes_free = 0, keyframes_busy = 0;
+  for (int i = 0; i < 150; ++i) {
+    backlog = i >= 1 && i < 75 ? TrackerOptions().max_mapping_backlog : 0;  // the first frame initialises
+    const TrackingResult r = tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i));
+    ASSERT_EQ(r.state, TrackingState::kOk) << "frame " << i;
+    (backlog > 0 ? keyframes_busy : keyframes_free) += r.new_keyframe;
+  }
+  EXPECT_EQ(keyframes_busy, 0);
+  EXPECT_GT(keyframes_free, 1);  // the initial one, and more once the backlog is gone
+}
+
 TEST(Tracker, WaitsForDepthThenInitializes) {
   const auto scene = testing::LandmarkScene::Room(3000, 4);
   Map map;
