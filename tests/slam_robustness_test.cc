@@ -103,13 +103,15 @@ class SlamRobustnessTest : public ::testing::Test {
   // What every spoiled run must satisfy; frames from `resume` on are tracked.
   static void ExpectRecovered(const RunOutput& r, int resume) {
     EXPECT_EQ(r.stats.frames, kFrames);
-    EXPECT_EQ(r.stats.frames_tracked + r.stats.frames_lost + r.stats.frames_waiting, r.stats.frames);
+    EXPECT_EQ(r.stats.frames_tracked + r.stats.frames_coasted + r.stats.frames_lost + r.stats.frames_waiting,
+              r.stats.frames);
     for (int i = resume; i < kFrames; ++i) EXPECT_EQ(r.states[i], TrackingState::kOk) << "frame " << i;
-    EXPECT_EQ(static_cast<int>(r.read_back.size()), r.stats.frames_tracked);
+    const int posed = r.stats.frames_tracked + r.stats.frames_coasted;
+    EXPECT_EQ(static_cast<int>(r.read_back.size()), posed);
     for (std::size_t i = 1; i < r.read_back.size(); ++i) {
       EXPECT_LT(r.read_back[i - 1].timestamp, r.read_back[i].timestamp);
     }
-    EXPECT_EQ(static_cast<int>(r.ate.pairs), r.stats.frames_tracked);
+    EXPECT_EQ(static_cast<int>(r.ate.pairs), posed);
     EXPECT_LT(r.ate.error.rmse, 0.02);
   }
 
@@ -130,14 +132,20 @@ TEST_F(SlamRobustnessTest, FramesWithoutDepthInTheMiddle) {
   EXPECT_EQ(r.stats.frames_tracked, kFrames);
 }
 
-TEST_F(SlamRobustnessTest, BlackFramesAreLost) {
-  const auto dir = WriteSpoiled([](int i, cv::Mat* colour, cv::Mat*) {
-    if (i >= 17 && i < 20) colour->setTo(cv::Scalar::all(0));
+// A few black frames coast on the motion model (a pose, marked coasted); a
+// longer black stretch is lost after max_coasting_frames.
+TEST_F(SlamRobustnessTest, BlackFramesCoastThenAreLost) {
+  const int coasting = TrackerOptions().max_coasting_frames;
+  const int first = 5, last = first + coasting + 3;  // black: [first, last)
+  const auto dir = WriteSpoiled([&](int i, cv::Mat* colour, cv::Mat*) {
+    if (i >= first && i < last) colour->setTo(cv::Scalar::all(0));
   });
   const RunOutput r = Run(dir);
-  for (int i = 17; i < 20; ++i) EXPECT_EQ(r.states[i], TrackingState::kLost) << "frame " << i;
-  EXPECT_EQ(r.stats.frames_lost, 3);
-  ExpectRecovered(r, 20);
+  for (int i = first; i < first + coasting; ++i) EXPECT_EQ(r.states[i], TrackingState::kCoasting) << "frame " << i;
+  for (int i = first + coasting; i < last; ++i) EXPECT_EQ(r.states[i], TrackingState::kLost) << "frame " << i;
+  EXPECT_EQ(r.stats.frames_coasted, coasting);
+  EXPECT_EQ(r.stats.frames_lost, last - first - coasting);
+  ExpectRecovered(r, last);
 }
 
 TEST_F(SlamRobustnessTest, ImageMissingInTheMiddle) {

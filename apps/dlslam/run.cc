@@ -43,6 +43,20 @@ void LogDynamicSummary(const RunStats& stats) {
 
 }  // namespace
 
+std::filesystem::path PoseSourcesPath(const std::filesystem::path& trajectory) {
+  std::filesystem::path out = trajectory;
+  out.replace_extension(".sources.txt");
+  return out;
+}
+
+void WritePoseSources(const std::filesystem::path& path, const std::vector<FramePoseSource>& sources) {
+  io::WriteFileAtomically(path, [&](std::ostream& out) {
+    out << "# how each frame's pose was obtained: tracked, relocalized, coasted (motion model, not confirmed by the "
+           "map) or none\n# timestamp source\n";
+    for (const FramePoseSource& s : sources) out << fmt::format("{:.6f} {}\n", s.timestamp, ToString(s.source));
+  });
+}
+
 RunOutcome RunSequence(const RunArgs& args) {
   SystemOptions options;
   options.sequential = args.sequential;
@@ -113,15 +127,19 @@ RunOutcome RunSequence(const RunArgs& args) {
   io::WriteTumTrajectory(args.out, trajectory);
   spdlog::info("wrote {} poses to {}", trajectory.size(), args.out.string());
   if (!args.keyframes.empty()) io::WriteTumTrajectory(args.keyframes, slam.KeyFrameTrajectory());
+  const std::filesystem::path sources_path = args.pose_sources.empty() ? PoseSourcesPath(args.out) : args.pose_sources;
+  WritePoseSources(sources_path, slam.FrameSources());
 
   RunStats stats = slam.Stats();
   for (const auto& [stage, summary] : source_timings.Summaries()) stats.timing_ms[stage] = summary;
   std::optional<RunEvaluation> evaluation;
   if (sequence.ground_truth()) evaluation = EvaluateRun(*sequence.ground_truth(), trajectory);
   const auto& t = stats.timing_ms;
-  spdlog::info("tracked {}/{} frames, lost {}, {} relocalizations, {} loops closed, {} keyframes, {} map points",
-               stats.frames_tracked, stats.frames, stats.frames_lost, stats.relocalizations, stats.loop.loops_closed,
-               stats.keyframes, stats.map_points);
+  spdlog::info("posed {}/{} frames (tracked {}, relocalized {}, coasted {}), without a pose {} (lost {}, before "
+               "initialisation {}), {} loops closed, {} keyframes, {} map points",
+               stats.frames_tracked + stats.frames_coasted, stats.frames, stats.frames_tracked - stats.relocalizations,
+               stats.relocalizations, stats.frames_coasted, stats.frames_lost + stats.frames_waiting, stats.frames_lost,
+               stats.frames_waiting, stats.loop.loops_closed, stats.keyframes, stats.map_points);
   if (t.count("frame_total")) {
     spdlog::info("time per frame: median {:.1f} ms, p95 {:.1f} ms (ORB {:.1f} ms, tracking {:.1f} ms)",
                  t.at("frame_total").median, t.at("frame_total").p95, t.at("orb_extraction").median,
@@ -149,6 +167,9 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("--sequence", args->sequence, "Sequence folder (rgb.txt, depth.txt, ...)")->required();
   cmd->add_option("--out", args->out, "Camera trajectory output (TUM format)")->capture_default_str();
   cmd->add_option("--keyframes", args->keyframes, "Keyframe trajectory output (TUM format)");
+  cmd->add_option("--pose-sources", args->pose_sources,
+                  "How each frame's pose was obtained (timestamp tracked|relocalized|coasted|none); default: beside "
+                  "--out, traj.txt -> traj.sources.txt");
   cmd->add_option("--report", args->report, "JSON report: frames, tracking, timing, ATE/RPE");
   cmd->add_option("--mode", args->mode,
                   "orb: the ORB-SLAM3-style baseline; semantic: drop keypoints on the semantic prior; "

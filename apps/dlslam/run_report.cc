@@ -77,8 +77,15 @@ nlohmann::ordered_json LoopReport(const LoopClosingStats& loop) {
 nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<RunEvaluation>& evaluation) {
   nlohmann::ordered_json j;
   j["frames"] = stats.frames;
+  j["frames_posed"] = stats.frames_tracked + stats.frames_coasted;
   j["frames_tracked"] = stats.frames_tracked;
+  j["frames_coasted"] = stats.frames_coasted;
   j["frames_lost"] = stats.frames_lost;
+  j["pose_sources"] = {{"tracked", stats.frames_tracked - stats.relocalizations},
+                       {"relocalized", stats.relocalizations},
+                       {"coasted", stats.frames_coasted},
+                       {"none", stats.frames_lost + stats.frames_waiting}};
+  j["frames_reextracted"] = stats.frames_reextracted;
   j["relocalizations"] = stats.relocalizations;
   j["loops_closed"] = stats.loop.loops_closed;
   j["frames_waiting"] = stats.frames_waiting;

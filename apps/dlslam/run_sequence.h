@@ -14,6 +14,9 @@ struct RunArgs {
   std::filesystem::path sequence;
   std::filesystem::path out = "trajectory.txt";
   std::filesystem::path keyframes;
+  // How each frame's pose was obtained; "" = beside `out` (traj.txt ->
+  // traj.sources.txt).
+  std::filesystem::path pose_sources;
   std::filesystem::path report;
   std::string mode = "orb";                // orb, semantic, geometry, full
   std::string geometry_search = "ant";     // exhaustive, ant
@@ -35,6 +38,11 @@ struct RunOutcome {
   RunStats stats;
   std::optional<RunEvaluation> evaluation;  // with ground truth
 };
+
+// traj.txt -> traj.sources.txt (any extension is replaced).
+std::filesystem::path PoseSourcesPath(const std::filesystem::path& trajectory);
+// One line per frame: "timestamp source", after a comment header.
+void WritePoseSources(const std::filesystem::path& path, const std::vector<FramePoseSource>& sources);
 
 // Runs, writes the trajectory (and keyframes, report when asked), logs a summary.
 RunOutcome RunSequence(const RunArgs& args);

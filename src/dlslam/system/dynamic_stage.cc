@@ -1,3 +1,5 @@
+#include <cstdlib>
+#include <spdlog/spdlog.h>
 #include "dlslam/system/dynamic_stage.h"
 
 #include <algorithm>
@@ -50,10 +52,11 @@ DynamicStage::DynamicStage(const DynamicOptions& options, const CameraIntrinsics
   stats_.fusion = options_.fusion.policy;
 }
 
-void DynamicStage::Process(Frame* frame, const cv::Mat& depth, const DynamicInputs& inputs) {
+cv::Mat DynamicStage::Process(Frame* frame, const cv::Mat& depth, const DynamicInputs& inputs) {
   DLSLAM_CHECK(frame != nullptr);
   stats_.keypoints_total += static_cast<std::int64_t>(frame->size());
   for (std::size_t i = 0; i < frame->size(); ++i) frame->SetIgnored(i, false);
+  cv::Mat removal;
   if (options_.mode != DynamicMode::kOrb) {
     const dynamic::SemanticMasks prior =
         UsesSemanticPrior(options_.mode) ? SemanticPrior(inputs) : dynamic::SemanticMasks{};
@@ -72,11 +75,12 @@ void DynamicStage::Process(Frame* frame, const cv::Mat& depth, const DynamicInpu
     if (options_.mode == DynamicMode::kSemantic) fusion.policy = dynamic::FusionPolicy::kSemanticOnly;
     if (options_.mode == DynamicMode::kGeometry) fusion.policy = dynamic::FusionPolicy::kGeometryOnly;
     int movables_dropped = 0;
-    const cv::Mat removal = dynamic::FuseDynamicMasks(prior, geometry, fusion, &movables_dropped);
+    removal = dynamic::FuseDynamicMasks(prior, geometry, fusion, &movables_dropped);
     stats_.movable_segments_dropped += movables_dropped;
     if (!removal.empty()) stats_.keypoints_removed += frame->IgnoreMasked(removal);
   }
   if (!inputs.moving_truth.empty()) CountAgainstTruth(*frame, inputs.moving_truth);
+  return removal;
 }
 
 dynamic::SemanticMasks DynamicStage::SemanticPrior(const DynamicInputs& inputs) {

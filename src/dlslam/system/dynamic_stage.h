@@ -67,10 +67,12 @@ class DynamicStage {
   DynamicStage(const DynamicOptions& options, const CameraIntrinsics& camera, Map* map, const Tracker* tracker,
                StageTimings* timings);
 
-  // Sets `frame`'s ignored flags (clearing earlier ones). `depth`: the
-  // frame's CV_32FC1 metres (empty: geometry is skipped). Throws
-  // dlslam::Error for a prior of the wrong type or size.
-  void Process(Frame* frame, const cv::Mat& depth, const DynamicInputs& inputs);
+  // Sets `frame`'s ignored flags (clearing earlier ones) and returns the
+  // removal mask they came from (CV_8UC1, 255 = removed; empty when nothing
+  // is removed, as in mode orb). `depth`: the frame's CV_32FC1 metres (empty:
+  // geometry is skipped). Throws dlslam::Error for a prior of the wrong type
+  // or size.
+  cv::Mat Process(Frame* frame, const cv::Mat& depth, const DynamicInputs& inputs);
 
   const DynamicStats& stats() const { return stats_; }
 

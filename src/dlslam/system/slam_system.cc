@@ -34,18 +34,39 @@ KeyFrameHooks SlamSystem::MappingHooks() {
   return hooks;
 }
 
+features::OrbOptions StaticOrbOptions() {
+  features::OrbOptions options;
+  options.fast_threshold_initial = 8;
+  options.fast_threshold_min = 4;
+  return options;
+}
+
+const char* ToString(PoseSource source) {
+  switch (source) {
+    case PoseSource::kTracked: return "tracked";
+    case PoseSource::kRelocalized: return "relocalized";
+    case PoseSource::kCoasted: return "coasted";
+    case PoseSource::kNone: return "none";
+  }
+  return "?";
+}
+
 void SystemOptions::Check() const {
   orb.Check();
+  static_orb.Check();
   tracker.Check();
   mapping.Check();
   loop.Check();
   dynamic.Check();
+  DLSLAM_CHECK(reextract_removed_share > 0 && reextract_removed_share <= 1,
+               "SystemOptions::reextract_removed_share {} outside (0, 1]", reextract_removed_share);
 }
 
 SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& options)
     : camera_(camera),
       options_(options),
       extractor_(options.orb),
+      static_extractor_(options.static_orb),
       pyramid_{options.orb.n_levels, options.orb.scale_factor},
       index_(MakeKeyFrameIndex(options)),
       tracker_(options.tracker, &map_, options.relocalization ? index_.get() : nullptr),
@@ -87,11 +108,22 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   timings_.Add("orb_extraction", watch.ElapsedMs());
   auto frame = std::make_shared<Frame>(
       Frame::Create(timestamp, features.keypoints, features.descriptors, depth, camera_, pyramid_));
-  dynamic_.Process(frame.get(), depth, dynamic);
+  const cv::Mat removal = dynamic_.Process(frame.get(), depth, dynamic);
+  if (!removal.empty() && frame->size() > 0) {
+    int removed = 0;
+    for (std::size_t i = 0; i < frame->size(); ++i) removed += frame->ignored(i);
+    if (removed >= options_.reextract_removed_share * static_cast<double>(frame->size())) {
+      watch = Stopwatch();
+      const features::OrbFeatures statics = static_extractor_.Extract(colour, removal);
+      frame = std::make_shared<Frame>(
+          Frame::Create(timestamp, statics.keypoints, statics.descriptors, depth, camera_, pyramid_));
+      ++counts_.frames_reextracted;
+      timings_.Add("orb_reextraction", watch.ElapsedMs());
+    }
+  }
   watch = Stopwatch();
   const TrackingResult result = tracker_.Track(frame);
   timings_.Add("tracking", watch.ElapsedMs());
-  // Attempts on frames without features (black, covered) cost nothing and
   // would only pull the median down.
   if (result.relocalization_ms >= 0 && frame->size() > 0) {
     timings_.Add("relocalization_attempt", result.relocalization_ms);
@@ -102,15 +134,21 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     mapper_.Enqueue(result.reference_keyframe);  // blocks only while the queue is full
     timings_.Add("keyframe_handover", watch.ElapsedMs());
   }
+  PoseSource source = PoseSource::kNone;
   switch (result.state) {
-    case TrackingState::kOk: {
+    case TrackingState::kOk:
       ++counts_.frames_tracked;
-      tracked_.push_back({timestamp, result.reference_keyframe, result.cam_from_reference});
+      source = result.relocalized ? PoseSource::kRelocalized : PoseSource::kTracked;
       break;
-    }
+    case TrackingState::kCoasting:
+      ++counts_.frames_coasted;
+      source = PoseSource::kCoasted;
+      break;
     case TrackingState::kLost: ++counts_.frames_lost; break;
     case TrackingState::kNotInitialized: ++counts_.frames_waiting; break;
   }
+  if (source != PoseSource::kNone) tracked_.push_back({timestamp, result.reference_keyframe, result.cam_from_reference});
+  sources_.push_back({timestamp, source});
   timings_.Add("frame_total", total.ElapsedMs());
   return result;
 }
@@ -120,10 +158,8 @@ void SlamSystem::LogStateChange(const TrackingResult& result, double timestamp) 
     ++counts_.relocalizations;
     spdlog::debug("t={:.6f}: lost -> relocalized on keyframe {} ({} inliers)", timestamp,
                  result.relocalization_keyframe, result.inliers);
-  } else if (result.state == TrackingState::kLost && last_state_ == TrackingState::kOk) {
-    spdlog::debug("t={:.6f}: ok -> lost", timestamp);
-  } else if (result.state == TrackingState::kOk && last_state_ == TrackingState::kLost) {
-    spdlog::debug("t={:.6f}: lost -> ok on the last reference keyframe", timestamp);
+  } else if (result.state != last_state_ && last_state_ != TrackingState::kNotInitialized) {
+    spdlog::debug("t={:.6f}: {} -> {}", timestamp, ToString(last_state_), ToString(result.state));
   }
   if (result.state != TrackingState::kNotInitialized) last_state_ = result.state;
 }
@@ -131,7 +167,10 @@ void SlamSystem::LogStateChange(const TrackingResult& result, double timestamp) 
 void SlamSystem::MarkLost(double timestamp) {
   ++counts_.frames;
   ++counts_.frames_lost;
-  if (last_state_ == TrackingState::kOk) spdlog::debug("t={:.6f}: ok -> lost (frame unreadable)", timestamp);
+  sources_.push_back({timestamp, PoseSource::kNone});
+  if (last_state_ == TrackingState::kOk || last_state_ == TrackingState::kCoasting) {
+    spdlog::debug("t={:.6f}: {} -> lost (frame unreadable)", timestamp, ToString(last_state_));
+  }
   if (last_state_ != TrackingState::kNotInitialized) last_state_ = TrackingState::kLost;
 }
 

@@ -26,11 +26,27 @@
 
 namespace dlslam {
 
+// ORB options for the re-extraction outside removed regions: what is left
+// in a crowd is mostly weakly textured (walls, desks), so FAST starts lower
+// (8 / 4 grey levels instead of 20 / 7; on the real Bonn crowd frames the
+// static re-extraction found 107-300 keypoints at 20 / 7 in the most
+// crowded frames).
+features::OrbOptions StaticOrbOptions();
+
 struct SystemOptions {
   features::OrbOptions orb;
+  features::OrbOptions static_orb = StaticOrbOptions();
   TrackerOptions tracker;
   LocalMapperOptions mapping;
   DynamicOptions dynamic;
+  // When the dynamic stage removes at least this share of a frame's
+  // keypoints, its ORB features are extracted again outside the removed
+  // regions, so that tracking gets the whole keypoint budget on static
+  // structure (ORB keypoints gather on texture: in a crowd 90 % of the
+  // first extraction lies on people, leaving too few to track). (0, 1];
+  // 1 = only when every keypoint was removed. Costs one more extraction on
+  // such frames (~3 ms).
+  double reextract_removed_share = 0.1;
   // Run local mapping inline after each keyframe instead of in its thread.
   bool sequential = false;
   // Relocalize a lost camera against the map by bag of words (loads the
@@ -46,11 +62,27 @@ struct SystemOptions {
   void Check() const;
 };
 
+// How a frame's pose was obtained.
+//   tracked      matched to the map (the normal case)
+//   relocalized  found again in the map after being lost
+//   coasted      the motion model's, through a short loss of tracking
+//                (people covering the view): not confirmed by the map
+//   none         no pose: lost, unreadable, or before initialisation
+enum class PoseSource { kTracked, kRelocalized, kCoasted, kNone };
+const char* ToString(PoseSource source);
+
+struct FramePoseSource {
+  double timestamp = 0.0;
+  PoseSource source = PoseSource::kNone;
+};
+
 struct RunStats {
   int frames = 0;           // frames given to the system (read or not)
-  int frames_tracked = 0;   // with a pose
+  int frames_tracked = 0;   // with a pose confirmed by the map (tracked or relocalized)
+  int frames_coasted = 0;   // with the motion model's pose (PoseSource::kCoasted)
   int frames_lost = 0;      // not tracked after initialisation, or unreadable
   int frames_waiting = 0;   // before initialisation
+  int frames_reextracted = 0;  // ORB features extracted again outside the removed regions
   int relocalizations = 0;  // lost -> tracked again through relocalization
   std::size_t keyframes = 0;
   std::size_t map_points = 0;
@@ -89,6 +121,10 @@ class SlamSystem {
   // current pose and the relative pose at tracking time (as ORB-SLAM does).
   Trajectory CameraTrajectory() const;
   Trajectory KeyFrameTrajectory() const;
+  // Every frame given to the system, in order, with how its pose was
+  // obtained (frames of CameraTrajectory are those with a source other than
+  // none, unless their keyframe was culled away).
+  const std::vector<FramePoseSource>& FrameSources() const { return sources_; }
   RunStats Stats() const;
 
  private:
@@ -107,6 +143,7 @@ class SlamSystem {
   CameraIntrinsics camera_;
   SystemOptions options_;
   features::OrbExtractor extractor_;
+  features::OrbExtractor static_extractor_;  // re-extraction outside removed regions
   ScalePyramid pyramid_;
   StageTimings timings_;  // before mapper_: the mapping thread writes to it
   Map map_;
@@ -116,6 +153,7 @@ class SlamSystem {
   LocalMapper mapper_;
   std::unique_ptr<LoopCloser> loop_closer_;  // null without loop closing
   std::vector<FrameRecord> tracked_;
+  std::vector<FramePoseSource> sources_;
   RunStats counts_;
   TrackingState last_state_ = TrackingState::kNotInitialized;  // for the state log
   bool shut_down_ = false;

@@ -21,6 +21,12 @@ void TrackerOptions::Check() const {
   DLSLAM_CHECK_GT(max_frames_between_keyframes, 0);
   DLSLAM_CHECK_GT(max_mapping_backlog, 0);
   DLSLAM_CHECK_GE(min_new_points, 0);
+  DLSLAM_CHECK(max_coasting_frames >= 0 && max_coasting_frames <= 1000,
+               "TrackerOptions::max_coasting_frames {} outside [0, 1000]", max_coasting_frames);
+  DLSLAM_CHECK_GE(min_coasting_inliers, 3);
+  DLSLAM_CHECK(max_coasting_correction_m > 0 && max_coasting_correction_deg > 0,
+               "TrackerOptions::max_coasting_correction {} m, {} deg must be > 0", max_coasting_correction_m,
+               max_coasting_correction_deg);
   pose.Check();
   relocalization.Check();
 }
@@ -29,6 +35,7 @@ const char* ToString(TrackingState state) {
   switch (state) {
     case TrackingState::kNotInitialized: return "not_initialized";
     case TrackingState::kOk: return "ok";
+    case TrackingState::kCoasting: return "coasting";
     case TrackingState::kLost: return "lost";
   }
   return "?";
@@ -56,8 +63,9 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
   SE3d pose;
   std::vector<MapPointId> matches;
   bool ok = false;
-  if (state_ == TrackingState::kOk && velocity_) ok = TrackWithMotionModel(*frame, &pose, &matches);
-  if (!ok && state_ == TrackingState::kLost && relocalizer_) {
+  const bool coasting = state_ == TrackingState::kCoasting;
+  if ((state_ == TrackingState::kOk || coasting) && velocity_) ok = TrackWithMotionModel(*frame, &pose, &matches);
+  if (!ok && (state_ == TrackingState::kLost || coasting) && relocalizer_) {
     const Stopwatch watch;
     const RelocalizationAttempt attempt = relocalizer_->Relocalize(*frame);
     result.relocalization_ms = watch.ElapsedMs();
@@ -72,10 +80,27 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
   }
   if (!ok) ok = TrackReferenceKeyFrame(*frame, &pose, &matches);
   KeyFrameId reference = reference_keyframe_;
+  bool searched_local_map = false;
   if (ok) {
     result.matches = CountMatches(matches);
     result.inliers = TrackLocalMap(*frame, &pose, &matches, &reference);
+    searched_local_map = true;
     ok = result.inliers >= options_.min_local_map_inliers;
+  }
+  SE3d coasted;
+  if (!ok && Coast(pose, searched_local_map ? result.inliers : 0, &coasted)) {
+    state_ = TrackingState::kCoasting;
+    ++coasted_frames_;
+    // The motion model goes on; the last tracked frame's points stay the
+    // ones searched next (last_matches_), now around the coasted pose.
+    RememberPose(coasted, reference_keyframe_, generation);
+    result.relocalized = false;
+    result.relocalization_keyframe = kNoId;
+    result.state = state_;
+    result.cam_from_world = coasted;
+    result.reference_keyframe = reference_keyframe_;
+    result.cam_from_reference = last_from_reference_.value_or(SE3d::Identity());
+    return result;
   }
   if (!ok) {
     state_ = TrackingState::kLost;
@@ -87,6 +112,7 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
     return result;
   }
   state_ = TrackingState::kOk;
+  coasted_frames_ = 0;
   reference_keyframe_ = reference;
   // After a relocalization the last pose is from before the loss: no motion model.
   velocity_ = last_pose_ && !result.relocalized ? std::optional<SE3d>(pose * last_pose_->Inverse()) : std::nullopt;
@@ -105,6 +131,22 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
   result.reference_keyframe = reference_keyframe_;
   result.cam_from_reference = last_from_reference_.value_or(SE3d::Identity());
   return result;
+}
+
+bool Tracker::Coast(const SE3d& refined, int inliers, SE3d* pose) const {
+  if (coasted_frames_ >= options_.max_coasting_frames || !last_pose_) return false;
+  if (state_ != TrackingState::kOk && state_ != TrackingState::kCoasting) return false;
+  const SE3d last = LastPose();
+  const SE3d predicted = velocity_ ? *velocity_ * last : last;
+  *pose = predicted;
+  if (inliers < options_.min_coasting_inliers) return true;
+  const SE3d correction = refined * predicted.Inverse();
+  constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+  if (correction.translation().norm() <= options_.max_coasting_correction_m &&
+      correction.so3().Log().norm() * kRadToDeg <= options_.max_coasting_correction_deg) {
+    *pose = refined;
+  }
+  return true;
 }
 
 bool Tracker::Initialize(const std::shared_ptr<const Frame>& frame, TrackingResult* result) {
@@ -127,7 +169,7 @@ bool Tracker::Initialize(const std::shared_ptr<const Frame>& frame, TrackingResu
 }
 
 std::optional<SE3d> Tracker::EstimatePose(const Frame& frame) const {
-  if (state_ != TrackingState::kOk || !last_pose_) return std::nullopt;
+  if ((state_ != TrackingState::kOk && state_ != TrackingState::kCoasting) || !last_pose_) return std::nullopt;
   // Right after a keyframe or a relocation there is no velocity: assume none.
   const SE3d last = LastPose();
   const SE3d guess = velocity_ ? *velocity_ * last : last;

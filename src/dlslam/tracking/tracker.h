@@ -8,9 +8,13 @@
 //   3. the local map (covisible keyframes' points) is projected and matched,
 //      and the pose optimised again;
 //   4. a keyframe is requested when tracking weakens.
-// A frame that cannot be tracked is reported lost; the next frames try to
-// relocalize against the whole map (relocalizer.h, when the tracker has a
-// keyframe index), then the last reference keyframe.
+// A frame that cannot be tracked (people covering the view, a blur) coasts:
+// it gets the motion model's pose (refined on what few matches there are
+// when they agree with it) and is reported as coasting, for up to
+// max_coasting_frames; meanwhile the map is searched around the coasted pose
+// and relocalization is tried. After that the frame is lost; the next frames
+// try to relocalize against the whole map (relocalizer.h, when the tracker
+// has a keyframe index), then the last reference keyframe.
 
 #include <functional>
 #include <memory>
@@ -56,13 +60,26 @@ struct TrackerOptions {
   // all closer than close_depth, and at least this many.
   int min_new_points = 100;
   PoseOptimizerOptions pose;
+  // Frames in a row that may coast on the motion model when tracking fails
+  // (0 = none: a failure is lost at once) [frames; 10 = 1/3 s at 30 Hz,
+  // about how long a person walking past covers the view].
+  int max_coasting_frames = 10;
+  // A coasting frame's pose is refined on its local-map matches when at
+  // least this many are inliers and the refined pose stays within
+  // max_coasting_correction of the prediction; otherwise it is the
+  // prediction itself.
+  int min_coasting_inliers = 10;
+  double max_coasting_correction_m = 0.05;
+  double max_coasting_correction_deg = 3.0;
   // Used when the tracker is given a keyframe index.
   RelocalizerOptions relocalization;
 
   void Check() const;
 };
 
-enum class TrackingState { kNotInitialized, kOk, kLost };
+// kCoasting: the frame has a pose from the motion model, not confirmed by
+// the map (too few inliers); no keyframe is made from it.
+enum class TrackingState { kNotInitialized, kOk, kCoasting, kLost };
 const char* ToString(TrackingState state);
 
 struct TrackingResult {
@@ -108,6 +125,10 @@ class Tracker {
 
  private:
   bool Initialize(const std::shared_ptr<const Frame>& frame, TrackingResult* result);
+  // The coasting pose of a frame that failed to track: `refined` (the local
+  // map's optimisation, `inliers` of them) when it agrees with the
+  // prediction, else the prediction. False when the frame may not coast.
+  bool Coast(const SE3d& refined, int inliers, SE3d* pose) const;
   // Pose from the last frame's points with the constant-velocity guess.
   bool TrackWithMotionModel(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches) const;
   // Pose from descriptor matches against the reference keyframe.
@@ -141,6 +162,7 @@ class Tracker {
   std::vector<MapPointId> last_matches_;
   KeyFrameId reference_keyframe_ = kNoId;
   int frames_since_keyframe_ = 0;
+  int coasted_frames_ = 0;  // in a row, up to the current frame
 };
 
 }  // namespace dlslam

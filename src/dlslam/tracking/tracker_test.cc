@@ -78,7 +78,9 @@ TEST(Tracker, WaitsForDepthThenInitializes) {
 TEST(Tracker, ReportsLostAndRecoversThroughTheReferenceKeyFrame) {
   const auto scene = testing::LandmarkScene::Room(6000, 5);
   Map map;
-  Tracker tracker(TrackerOptions(), &map);
+  TrackerOptions options;
+  options.max_coasting_frames = 0;  // a failure is lost at once
+  Tracker tracker(options, &map);
   for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
   // A black frame: nothing to match.
   const Frame black = Frame::Create(0.4, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
@@ -129,9 +131,41 @@ TEST(Tracker, EstimatePoseFallsBackToTheMotionGuess) {
   const SE3d truth_rel = CamFromWorld(5) * CamFromWorld(0).Inverse();
   EXPECT_LT((guess->Inverse().translation() - truth_rel.Inverse().translation()).norm(), 0.005);
   EXPECT_EQ(tracker.state(), TrackingState::kOk);
-  // After losing track there is no estimate.
+  // Coasting through the black frames keeps an estimate; once lost there is none.
+  for (int i = 0; i < TrackerOptions().max_coasting_frames; ++i) {
+    EXPECT_EQ(tracker.Track(std::make_shared<Frame>(black)).state, TrackingState::kCoasting);
+    EXPECT_TRUE(tracker.EstimatePose(black).has_value());
+  }
   EXPECT_EQ(tracker.Track(std::make_shared<Frame>(black)).state, TrackingState::kLost);
   EXPECT_FALSE(tracker.EstimatePose(black).has_value());
+}
+
+// People covering the view for a few frames: the frames coast on the motion
+// model (with a pose close to the truth, marked as such, no keyframe), and
+// tracking takes over again when the view clears, without relocalization.
+TEST(Tracker, CoastsThroughAShortOcclusion) {
+  const auto scene = testing::LandmarkScene::Room(6000, 8);
+  Map map;
+  Tracker tracker(TrackerOptions(), &map);
+  for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+  const std::size_t keyframes = map.NumKeyFrames();
+  const SE3d world_from_first = CamFromWorld(0).Inverse();
+  for (int i = 10; i < 16; ++i) {
+    const Frame covered = Frame::Create(i / 30.0, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
+    const TrackingResult r = tracker.Track(std::make_shared<Frame>(covered));
+    ASSERT_EQ(r.state, TrackingState::kCoasting) << "frame " << i;
+    ASSERT_TRUE(r.cam_from_world.has_value());
+    EXPECT_FALSE(r.new_keyframe);
+    // The constant-velocity extrapolation of a smooth path: within 1 cm.
+    const SE3d truth = CamFromWorld(i) * world_from_first;
+    EXPECT_LT((r.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm(), 0.01) << i;
+  }
+  EXPECT_EQ(map.NumKeyFrames(), keyframes);
+  const TrackingResult back = tracker.Track(scene.MakeFrame(CamFromWorld(16), 16 / 30.0, 99));
+  ASSERT_EQ(back.state, TrackingState::kOk);
+  EXPECT_FALSE(back.relocalized);
+  const SE3d truth = CamFromWorld(16) * world_from_first;
+  EXPECT_LT((back.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm(), 0.005);
 }
 
 }  // namespace
