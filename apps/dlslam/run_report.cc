@@ -32,6 +32,8 @@ nlohmann::ordered_json DynamicReport(const RunStats& stats) {
   j["frames_with_geometry"] = d.frames_with_geometry;
   j["map_points_culled"] = d.map_points_culled;
   j["movable_segments_dropped"] = d.movable_segments_dropped;
+  j["inverted_checks_tried"] = d.inverted_checks_tried;
+  j["inverted_checks_resolved"] = d.inverted_checks_resolved;
   j["geometry_ms"] = StageSummary(stats, "geometry");
   j["semantic_ms"] = StageSummary(stats, "semantic");
   j["semantic_wait_ms"] = StageSummary(stats, "semantic_wait");

@@ -38,6 +38,17 @@ struct DynamicOptions {
   // saw them, the current depth sees through where they were) are removed
   // from the map, so tracking never matches them again.
   bool cull_vanished_points = true;
+  // When the people hold most of the texture, the first pose estimate
+  // follows them and the check then calls the static scene moving. When
+  // geometry marks at least inverted_check_min_share of the image, the check
+  // is run again with a pose estimated from the keypoints inside the marked
+  // region only, and the labelling that marks less of the image wins (the
+  // static scene is the larger part of the view, counted in pixels, not in
+  // keypoints). Not in frames with a semantic prior: the estimate already
+  // left the prior's keypoints out.
+  bool resolve_inverted_check = true;
+
+  double inverted_check_min_share = 0.15;
 
   void Check() const;
 };

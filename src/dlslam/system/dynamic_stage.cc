@@ -67,7 +67,7 @@ cv::Mat DynamicStage::Process(Frame* frame, const cv::Mat& depth, const DynamicI
       // objects are mostly still: they stay in).
       if (!prior.dynamic.empty()) frame->IgnoreMasked(prior.dynamic);
       Stopwatch watch;
-      geometry = DetectGeometrically(*frame, depth);
+      geometry = DetectGeometrically(frame, depth, /*estimate_knows_movers=*/!prior.dynamic.empty());
       timings_->Add("geometry", watch.ElapsedMs());
       for (std::size_t i = 0; i < frame->size(); ++i) frame->SetIgnored(i, false);
     }
@@ -99,7 +99,9 @@ dynamic::SemanticMasks DynamicStage::SemanticPrior(const DynamicInputs& inputs) 
   return prior;
 }
 
-dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, const cv::Mat& depth) {
+dynamic::GeometryResult DynamicStage::DetectGeometrically(Frame* frame_ptr, const cv::Mat& depth,
+                                                          bool estimate_knows_movers) {
+  const Frame& frame = *frame_ptr;
   DLSLAM_CHECK(depth.type() == CV_32FC1 && depth.cols == camera_.width && depth.rows == camera_.height,
                "depth must be float metres {}x{}", camera_.width, camera_.height);
   const std::optional<SE3d> cam_from_world = tracker_->EstimatePose(frame);
@@ -111,6 +113,32 @@ dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, co
   }
   if (views.empty()) return {};
   dynamic::GeometryResult result = detector_.Detect(depth, camera_, *cam_from_world, views);
+  const double share = cv::countNonZero(result.dynamic_mask) / static_cast<double>(result.dynamic_mask.total());
+  if (options_.resolve_inverted_check && !estimate_knows_movers && share >= options_.inverted_check_min_share) {
+    // Perhaps the estimate followed the movers, and what moves is the rest:
+    // estimate again from the keypoints inside the "moving" region only,
+    // and keep the labelling that leaves the larger part of the image static.
+    std::vector<bool> saved(frame.size());
+    for (std::size_t i = 0; i < frame.size(); ++i) saved[i] = frame.ignored(i);
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+      const Eigen::Vector2f& uv = frame.keypoint(i).raw_uv;
+      const int x = std::clamp(static_cast<int>(std::lround(uv.x())), 0, camera_.width - 1);
+      const int y = std::clamp(static_cast<int>(std::lround(uv.y())), 0, camera_.height - 1);
+      frame_ptr->SetIgnored(i, saved[i] || result.dynamic_mask.at<uchar>(y, x) == 0);
+    }
+    const std::optional<SE3d> other = tracker_->EstimatePose(frame);
+    for (std::size_t i = 0; i < frame.size(); ++i) frame_ptr->SetIgnored(i, saved[i]);
+    if (other) {
+      dynamic::GeometryResult alternative = detector_.Detect(depth, camera_, *other, views);
+      const double other_share =
+          cv::countNonZero(alternative.dynamic_mask) / static_cast<double>(alternative.dynamic_mask.total());
+      ++stats_.inverted_checks_tried;
+      if (other_share < share) {
+        result = std::move(alternative);
+        ++stats_.inverted_checks_resolved;
+      }
+    }
+  }
   ++stats_.frames_with_geometry;
   stats_.keypoints_tested += result.points_tested;
   stats_.keypoints_dynamic += result.points_dynamic;

@@ -45,6 +45,10 @@ struct DynamicStats {
   std::int64_t frames_with_geometry = 0;  // frames the geometric check ran on
   std::int64_t map_points_culled = 0;     // vanished map points removed from the map
   std::int64_t movable_segments_dropped = 0;  // movable-class segments geometry saw move, dropped whole
+  // Frames whose check was repeated with the pose of the "moving" region's
+  // keypoints, and those where that labelling won (DynamicOptions::resolve_inverted_check).
+  std::int64_t inverted_checks_tried = 0;
+  std::int64_t inverted_checks_resolved = 0;
   // Per keypoint of every frame with ground truth: removed and moving (true
   // positive), removed and still (false positive), kept and moving (false negative).
   std::int64_t frames_with_truth = 0;
@@ -80,7 +84,9 @@ class DynamicStage {
   dynamic::SemanticMasks SemanticPrior(const DynamicInputs& inputs);
   // The multi-view check with the tracker's first pose estimate; a result
   // with an empty mask when it cannot run (not tracking, no keyframe).
-  dynamic::GeometryResult DetectGeometrically(const Frame& frame, const cv::Mat& depth);
+  // `estimate_knows_movers`: the estimate already ignored a semantic prior's
+  // keypoints, so the labelling is not checked for inversion.
+  dynamic::GeometryResult DetectGeometrically(Frame* frame, const cv::Mat& depth, bool estimate_knows_movers);
   void CountAgainstTruth(const Frame& frame, const cv::Mat& truth);
 
   DynamicOptions options_;
