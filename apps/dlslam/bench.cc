@@ -128,6 +128,7 @@ std::string Table(const std::vector<ModeRun>& runs, double budget_ms) {
   table += row("frames tracked", [](const ModeRun& r) {
     return fmt::format("{}/{}", r.outcome.stats.frames_tracked, r.outcome.stats.frames);
   });
+  table += row("frames coasted", [](const ModeRun& r) { return fmt::format("{}", r.outcome.stats.frames_coasted); });
   table += row("wall time [s]", [](const ModeRun& r) { return fmt::format("{:.1f}", r.wall_s); });
   table += row("real-time factor", [](const ModeRun& r) {
     return r.wall_s > 0 && r.sequence_s > 0 ? fmt::format("{:.2f}x", r.sequence_s / r.wall_s) : std::string("-");
@@ -154,6 +155,7 @@ nlohmann::ordered_json Json(const BenchArgs& args, const fs::path& sequence, con
     m["mode"] = r.mode;
     m["frames"] = r.outcome.stats.frames;
     m["frames_tracked"] = r.outcome.stats.frames_tracked;
+    m["frames_coasted"] = r.outcome.stats.frames_coasted;
     m["wall_s"] = r.wall_s;
     m["sequence_s"] = r.sequence_s;
     m["realtime_factor"] = r.wall_s > 0 ? r.sequence_s / r.wall_s : 0.0;

@@ -1,6 +1,7 @@
 // dlslam: visual SLAM that stays accurate when people move through the scene.
 // One tool, one subcommand per job (see commands.h).
 
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -20,6 +21,9 @@ int main(int argc, char** argv) {
   app.parse_complete_callback([&] {
     spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info);
   });
+  // Results go to stdout, every log line, warning and error to stderr, so
+  // that `> result.json` captures only the result.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("dlslam"));
   spdlog::set_pattern("[%l] %v");
 
   dlslam::app::AddDemoCommand(app);

@@ -73,7 +73,6 @@ Frame Frame::Create(double timestamp, const std::vector<cv::KeyPoint>& keypoints
       }
     }
   }
-  f.ignored_.assign(keypoints.size(), false);
   f.BuildGrid();
   return f;
 }
@@ -100,19 +99,41 @@ void Frame::BuildGrid() {
   }
 }
 
-int Frame::IgnoreMasked(const cv::Mat& mask) {
+std::vector<bool> Frame::OnMask(const cv::Mat& mask) const {
   DLSLAM_CHECK_EQ(mask.type(), CV_8UC1, "dynamic mask must be 8-bit single channel");
-  int flagged = 0;
+  std::vector<bool> on(keypoints_.size(), false);
   for (std::size_t i = 0; i < keypoints_.size(); ++i) {
     const int x = static_cast<int>(std::lround(keypoints_[i].raw_uv.x()));
     const int y = static_cast<int>(std::lround(keypoints_[i].raw_uv.y()));
     if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) continue;
-    if (mask.at<uchar>(y, x) != 0 && !ignored_[i]) {
-      ignored_[i] = true;
-      ++flagged;
-    }
+    on[i] = mask.at<uchar>(y, x) != 0;
   }
-  return flagged;
+  return on;
+}
+
+Frame Frame::Subset(const std::vector<bool>& keep) const {
+  DLSLAM_CHECK_EQ(keep.size(), keypoints_.size(), "one flag per keypoint");
+  Frame f;
+  f.timestamp_ = timestamp_;
+  f.camera_ = camera_;
+  f.pyramid_ = pyramid_;
+  f.cam_from_world_ = cam_from_world_;
+  const int kept = static_cast<int>(std::count(keep.begin(), keep.end(), true));
+  f.keypoints_.reserve(static_cast<std::size_t>(kept));
+  f.descriptors_.create(kept, descriptors_.cols, descriptors_.empty() ? CV_8UC1 : descriptors_.type());
+  for (std::size_t i = 0; i < keypoints_.size(); ++i) {
+    if (!keep[i]) continue;
+    descriptors_.row(static_cast<int>(i)).copyTo(f.descriptors_.row(static_cast<int>(f.keypoints_.size())));
+    f.keypoints_.push_back(keypoints_[i]);
+  }
+  f.BuildGrid();
+  return f;
+}
+
+Frame Frame::WithoutMasked(const cv::Mat& mask) const {
+  std::vector<bool> keep = OnMask(mask);
+  keep.flip();
+  return Subset(keep);
 }
 
 std::vector<int> Frame::FeaturesInArea(double u, double v, double radius, int min_octave,
@@ -127,7 +148,6 @@ std::vector<int> Frame::FeaturesInArea(double u, double v, double radius, int mi
     for (int cx = x0; cx <= x1; ++cx) {
       for (int i : grid_[cy * kGridCols + cx]) {
         const FrameKeypoint& k = keypoints_[i];
-        if (ignored_[i]) continue;
         if (min_octave >= 0 && k.octave < min_octave) continue;
         if (max_octave >= 0 && k.octave > max_octave) continue;
         if ((k.uv - Eigen::Vector2d(u, v)).squaredNorm() <= r2) out.push_back(i);

@@ -1,7 +1,9 @@
 #pragma once
 // A frame ready for tracking: undistorted keypoints with depth and the RGB-D
-// virtual right coordinate, their descriptors, a grid for radius search, and
-// a per-keypoint "ignore" flag that the dynamic-object work sets.
+// virtual right coordinate, their descriptors and a grid for radius search.
+// Dynamic regions are removed by making a frame without their keypoints
+// (WithoutMasked): tracking and mapping only ever see static keypoints, so no
+// matcher can forget to skip moving ones.
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
@@ -53,16 +55,16 @@ class Frame {
   const cv::Mat& descriptors() const { return descriptors_; }
   const uchar* descriptor(std::size_t i) const { return descriptors_.ptr<uchar>(static_cast<int>(i)); }
 
-  // Keypoints inside a dynamic region are ignored by tracking and mapping.
-  bool ignored(std::size_t i) const { return ignored_[i]; }
-  void SetIgnored(std::size_t i, bool value) { ignored_[i] = value; }
-  // Flags every keypoint whose detected pixel falls on a non-zero pixel of
-  // `mask` (CV_8UC1, the colour image's size). Returns how many were flagged.
-  int IgnoreMasked(const cv::Mat& mask);
+  // Per keypoint: whether its detected pixel falls on a non-zero pixel of
+  // `mask` (CV_8UC1, the colour image's size; keypoints outside it: false).
+  std::vector<bool> OnMask(const cv::Mat& mask) const;
+  // The same frame with only the keypoints i where keep[i] (same order).
+  Frame Subset(const std::vector<bool>& keep) const;
+  // The same frame without the keypoints on `mask` (e.g. dynamic regions).
+  Frame WithoutMasked(const cv::Mat& mask) const;
 
   // Indices of keypoints within `radius` px of (u, v) (undistorted), with
-  // octave in [min_octave, max_octave] (negative = no bound). Ignored ones
-  // are left out.
+  // octave in [min_octave, max_octave] (negative = no bound).
   std::vector<int> FeaturesInArea(double u, double v, double radius, int min_octave = -1,
                                   int max_octave = -1) const;
 
@@ -82,7 +84,6 @@ class Frame {
   ScalePyramid pyramid_;
   std::vector<FrameKeypoint> keypoints_;
   cv::Mat descriptors_;
-  std::vector<bool> ignored_;
   // Undistorted image bounds covered by the grid.
   double min_u_ = 0, max_u_ = 0, min_v_ = 0, max_v_ = 0;
   double cell_w_inv_ = 0, cell_h_inv_ = 0;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <random>
 
 #include "dlslam/util/check.h"
@@ -79,24 +81,38 @@ TEST(Frame, DistortedKeypointsAreUndistorted) {
   EXPECT_LT((f.keypoint(0).uv - undistorted).norm(), 0.05);
 }
 
-TEST(Frame, MaskedKeypointsAreIgnored) {
+TEST(Frame, WithoutMaskedKeepsOnlyTheKeypointsOffTheMask) {
   const Input in = RandomInput(500, 4);
-  Frame f = Frame::Create(0, in.keypoints, in.descriptors, in.depth, CameraPreset("fr3"), ScalePyramid());
+  const Frame f = Frame::Create(0, in.keypoints, in.descriptors, in.depth, CameraPreset("fr3"), ScalePyramid());
   cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
   mask(cv::Rect(100, 100, 200, 200)).setTo(255);
-  const int flagged = f.IgnoreMasked(mask);
-  int expected = 0;
+  const std::vector<bool> on = f.OnMask(mask);
+  ASSERT_EQ(on.size(), f.size());
+  std::vector<std::size_t> outside;
   for (std::size_t i = 0; i < f.size(); ++i) {
     const auto& p = in.keypoints[i].pt;
     const bool inside = std::lround(p.x) >= 100 && std::lround(p.x) < 300 && std::lround(p.y) >= 100 &&
                         std::lround(p.y) < 300;
-    expected += inside;
-    EXPECT_EQ(f.ignored(i), inside);
+    EXPECT_EQ(on[i], inside);
+    if (!inside) outside.push_back(i);
   }
-  EXPECT_EQ(flagged, expected);
-  EXPECT_GT(flagged, 0);
-  EXPECT_TRUE(f.FeaturesInArea(200, 200, 50).empty());
-  EXPECT_THROW(f.IgnoreMasked(cv::Mat(480, 640, CV_32FC1)), Error);
+  ASSERT_GT(outside.size(), 0u);
+  ASSERT_LT(outside.size(), f.size());
+  const Frame statics = f.WithoutMasked(mask);
+  ASSERT_EQ(statics.size(), outside.size());
+  // The same keypoints, descriptors and depth, in the same order.
+  for (std::size_t j = 0; j < outside.size(); ++j) {
+    const std::size_t i = outside[j];
+    EXPECT_EQ(statics.keypoint(j).uv, f.keypoint(i).uv);
+    EXPECT_EQ(statics.keypoint(j).depth, f.keypoint(i).depth);
+    EXPECT_EQ(0, std::memcmp(statics.descriptor(j), f.descriptor(i), 32));
+  }
+  EXPECT_TRUE(statics.FeaturesInArea(200, 200, 50).empty());
+  EXPECT_FALSE(f.FeaturesInArea(200, 200, 50).empty());
+  EXPECT_EQ(statics.timestamp(), f.timestamp());
+  EXPECT_THROW(f.OnMask(cv::Mat(480, 640, CV_32FC1)), Error);
+  EXPECT_THROW(f.Subset(std::vector<bool>(3, true)), Error);
+  EXPECT_EQ(f.Subset(std::vector<bool>(f.size(), false)).size(), 0u);
 }
 
 TEST(Frame, RejectsInconsistentInput) {

@@ -82,7 +82,6 @@ std::vector<MapPointId> MatchToKeyFrame(const Frame& frame, const Frame& keyfram
     if (keyframe_points[k] == kNoId) continue;
     int best = 256, second = 256, best_idx = -1;
     for (std::size_t i = 0; i < frame.size(); ++i) {
-      if (frame.ignored(i)) continue;
       const int d = HammingDistance(keyframe_frame.descriptor(k), frame.descriptor(i));
       if (d < best) {
         second = best;

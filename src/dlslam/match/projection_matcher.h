@@ -37,7 +37,7 @@ struct ProjectionMatchStats {
 // For every point not yet matched (matches[i] == kNoId for the keypoint that
 // would take it), finds the best keypoint near its projection and writes the
 // point id into `matches` (one entry per keypoint, resized if empty).
-// Keypoints that already hold a point or are ignored are not candidates.
+// Keypoints that already hold a point are not candidates.
 ProjectionMatchStats SearchByProjection(const Frame& frame, const SE3d& cam_from_world,
                                         const std::vector<MapPointView>& points,
                                         const ProjectionMatchOptions& options,

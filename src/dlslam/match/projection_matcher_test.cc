@@ -61,11 +61,9 @@ TEST_F(ProjectionMatcherTest, MatchesAroundAGoodPoseGuess) {
   EXPECT_EQ(count, stats.matched);
 }
 
-TEST_F(ProjectionMatcherTest, IgnoredKeypointsAndTakenKeypointsAreSkipped) {
-  for (std::size_t i = 0; i < frame1_->size(); i += 2) frame1_->SetIgnored(i, true);
+TEST_F(ProjectionMatcherTest, TakenKeypointsAreSkipped) {
   std::vector<MapPointId> matches;
   SearchByProjection(*frame1_, pose1_, points_, {}, &matches);
-  for (std::size_t i = 0; i < frame1_->size(); i += 2) EXPECT_EQ(matches[i], kNoId);
   // A second search does not move keypoints that already hold a point.
   std::vector<MapPointId> again = matches;
   SearchByProjection(*frame1_, pose1_, points_, {}, &again);

@@ -46,13 +46,13 @@ std::vector<std::pair<int, int>> SearchForTriangulation(const Frame& frame1, con
 
   std::vector<int> candidates2;
   for (std::size_t j = 0; j < frame2.size(); ++j) {
-    if (points2[j] == kNoId && !frame2.ignored(j)) candidates2.push_back(static_cast<int>(j));
+    if (points2[j] == kNoId) candidates2.push_back(static_cast<int>(j));
   }
   const ScalePyramid& pyr2 = frame2.pyramid();
   std::vector<int> owner(frame2.size(), -1);  // frame2 keypoint -> frame1 keypoint
   std::vector<int> owner_distance(frame2.size(), 257);
   for (std::size_t i = 0; i < frame1.size(); ++i) {
-    if (points1[i] != kNoId || frame1.ignored(i)) continue;
+    if (points1[i] != kNoId) continue;
     const FrameKeypoint& k1 = frame1.keypoint(i);
     const Eigen::Vector3d line = f21 * Eigen::Vector3d(k1.uv.x(), k1.uv.y(), 1.0);
     const double line_norm2 = line.head<2>().squaredNorm();

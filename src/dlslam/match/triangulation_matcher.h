@@ -30,7 +30,7 @@ struct TriangulationMatchOptions {
 };
 
 // Pairs (keypoint of frame1, keypoint of frame2) of keypoints with no point
-// (points[i] == kNoId), not ignored, each keypoint in at most one pair.
+// (points[i] == kNoId), each keypoint in at most one pair.
 std::vector<std::pair<int, int>> SearchForTriangulation(const Frame& frame1, const SE3d& cam1_from_world,
                                                         const std::vector<MapPointId>& points1,
                                                         const Frame& frame2, const SE3d& cam2_from_world,

@@ -36,7 +36,6 @@ std::vector<MapPointId> MatchByBow(const Frame& frame, const FeatureVector& fram
       int best = 257, second = 257, best_index = -1;
       for (std::uint32_t i : f->features) {
         DLSLAM_CHECK_LT(i, frame.size(), "frame feature index");
-        if (frame.ignored(i)) continue;
         const int d = HammingDistance(keyframe_frame.descriptor(kk), frame.descriptor(i));
         if (d < best) {
           second = best;

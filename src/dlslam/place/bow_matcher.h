@@ -26,7 +26,7 @@ struct BowMatchOptions {
 // matches, kNoId if none. `frame_features` / `keyframe_features` are the
 // direct indices of the two (KeyFrameIndex::Describe / Features);
 // `keyframe_points` holds one id per keyframe keypoint (kNoId: no point).
-// Ignored frame keypoints are never matched; each frame keypoint takes at
+// Each frame keypoint takes at
 // most one point (the closest descriptor wins).
 std::vector<MapPointId> MatchByBow(const Frame& frame, const FeatureVector& frame_features,
                                    const Frame& keyframe_frame, const FeatureVector& keyframe_features,

@@ -52,10 +52,8 @@ DynamicStage::DynamicStage(const DynamicOptions& options, const CameraIntrinsics
   stats_.fusion = options_.fusion.policy;
 }
 
-cv::Mat DynamicStage::Process(Frame* frame, const cv::Mat& depth, const DynamicInputs& inputs) {
-  DLSLAM_CHECK(frame != nullptr);
-  stats_.keypoints_total += static_cast<std::int64_t>(frame->size());
-  for (std::size_t i = 0; i < frame->size(); ++i) frame->SetIgnored(i, false);
+cv::Mat DynamicStage::Process(const Frame& frame, const cv::Mat& depth, const DynamicInputs& inputs) {
+  stats_.keypoints_total += static_cast<std::int64_t>(frame.size());
   cv::Mat removal;
   if (options_.mode != DynamicMode::kOrb) {
     const dynamic::SemanticMasks prior =
@@ -63,13 +61,13 @@ cv::Mat DynamicStage::Process(Frame* frame, const cv::Mat& depth, const DynamicI
     dynamic::GeometryResult geometry;  // empty mask: the check did not run
     if (UsesGeometry(options_.mode) && !depth.empty()) {
       // The first pose estimate must not lean on what the network already
-      // knows to move: flag the prior's keypoints while estimating (movable
-      // objects are mostly still: they stay in).
-      if (!prior.dynamic.empty()) frame->IgnoreMasked(prior.dynamic);
+      // knows to move: it sees the frame without the prior's keypoints
+      // (movable objects are mostly still: they stay in).
       Stopwatch watch;
-      geometry = DetectGeometrically(frame, depth, /*estimate_knows_movers=*/!prior.dynamic.empty());
+      const bool has_prior = !prior.dynamic.empty();
+      geometry = DetectGeometrically(has_prior ? frame.WithoutMasked(prior.dynamic) : frame, depth,
+                                     /*estimate_knows_movers=*/has_prior);
       timings_->Add("geometry", watch.ElapsedMs());
-      for (std::size_t i = 0; i < frame->size(); ++i) frame->SetIgnored(i, false);
     }
     dynamic::FusionOptions fusion = options_.fusion;
     if (options_.mode == DynamicMode::kSemantic) fusion.policy = dynamic::FusionPolicy::kSemanticOnly;
@@ -77,9 +75,11 @@ cv::Mat DynamicStage::Process(Frame* frame, const cv::Mat& depth, const DynamicI
     int movables_dropped = 0;
     removal = dynamic::FuseDynamicMasks(prior, geometry, fusion, &movables_dropped);
     stats_.movable_segments_dropped += movables_dropped;
-    if (!removal.empty()) stats_.keypoints_removed += frame->IgnoreMasked(removal);
   }
-  if (!inputs.moving_truth.empty()) CountAgainstTruth(*frame, inputs.moving_truth);
+  std::vector<bool> removed(frame.size(), false);
+  if (!removal.empty()) removed = frame.OnMask(removal);
+  stats_.keypoints_removed += std::count(removed.begin(), removed.end(), true);
+  if (!inputs.moving_truth.empty()) CountAgainstTruth(frame, removed, inputs.moving_truth);
   return removal;
 }
 
@@ -99,9 +99,8 @@ dynamic::SemanticMasks DynamicStage::SemanticPrior(const DynamicInputs& inputs) 
   return prior;
 }
 
-dynamic::GeometryResult DynamicStage::DetectGeometrically(Frame* frame_ptr, const cv::Mat& depth,
+dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, const cv::Mat& depth,
                                                           bool estimate_knows_movers) {
-  const Frame& frame = *frame_ptr;
   DLSLAM_CHECK(depth.type() == CV_32FC1 && depth.cols == camera_.width && depth.rows == camera_.height,
                "depth must be float metres {}x{}", camera_.width, camera_.height);
   const std::optional<SE3d> cam_from_world = tracker_->EstimatePose(frame);
@@ -118,16 +117,7 @@ dynamic::GeometryResult DynamicStage::DetectGeometrically(Frame* frame_ptr, cons
     // Perhaps the estimate followed the movers, and what moves is the rest:
     // estimate again from the keypoints inside the "moving" region only,
     // and keep the labelling that leaves the larger part of the image static.
-    std::vector<bool> saved(frame.size());
-    for (std::size_t i = 0; i < frame.size(); ++i) saved[i] = frame.ignored(i);
-    for (std::size_t i = 0; i < frame.size(); ++i) {
-      const Eigen::Vector2f& uv = frame.keypoint(i).raw_uv;
-      const int x = std::clamp(static_cast<int>(std::lround(uv.x())), 0, camera_.width - 1);
-      const int y = std::clamp(static_cast<int>(std::lround(uv.y())), 0, camera_.height - 1);
-      frame_ptr->SetIgnored(i, saved[i] || result.dynamic_mask.at<uchar>(y, x) == 0);
-    }
-    const std::optional<SE3d> other = tracker_->EstimatePose(frame);
-    for (std::size_t i = 0; i < frame.size(); ++i) frame_ptr->SetIgnored(i, saved[i]);
+    const std::optional<SE3d> other = tracker_->EstimatePose(frame.Subset(frame.OnMask(result.dynamic_mask)));
     if (other) {
       dynamic::GeometryResult alternative = detector_.Detect(depth, camera_, *other, views);
       const double other_share =
@@ -152,7 +142,8 @@ dynamic::GeometryResult DynamicStage::DetectGeometrically(Frame* frame_ptr, cons
   return result;
 }
 
-void DynamicStage::CountAgainstTruth(const Frame& frame, const cv::Mat& truth) {
+void DynamicStage::CountAgainstTruth(const Frame& frame, const std::vector<bool>& removed_flags,
+                                     const cv::Mat& truth) {
   DLSLAM_CHECK(truth.type() == CV_8UC1 && truth.cols == camera_.width && truth.rows == camera_.height,
                "the ground-truth mask must be 8-bit single-channel {}x{}", camera_.width, camera_.height);
   ++stats_.frames_with_truth;
@@ -161,7 +152,7 @@ void DynamicStage::CountAgainstTruth(const Frame& frame, const cv::Mat& truth) {
     const int x = std::clamp(static_cast<int>(std::lround(uv.x())), 0, truth.cols - 1);
     const int y = std::clamp(static_cast<int>(std::lround(uv.y())), 0, truth.rows - 1);
     const bool moving = truth.at<uchar>(y, x) != 0;
-    const bool removed = frame.ignored(i);
+    const bool removed = removed_flags[i];
     if (removed && moving) ++stats_.true_positives;
     if (removed && !moving) ++stats_.false_positives;
     if (!removed && moving) ++stats_.false_negatives;

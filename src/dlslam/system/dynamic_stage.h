@@ -2,8 +2,8 @@
 // The per-frame dynamic-object stage of SlamSystem, between ORB extraction
 // and tracking: waits for the semantic prior, tests the frame's depth against
 // earlier keyframes (multi-view geometry with the tracker's first pose
-// estimate), fuses both into one removal mask, flags the keypoints on it as
-// ignored, and culls map points that moved away. Runs on the tracking thread;
+// estimate), fuses both into one removal mask (SlamSystem gives tracking the
+// frame without its keypoints), and culls map points that moved away. Runs on the tracking thread;
 // it reads the map through copies and writes to it only through Map's
 // locked calls, so the local-mapping thread may run alongside.
 
@@ -71,12 +71,12 @@ class DynamicStage {
   DynamicStage(const DynamicOptions& options, const CameraIntrinsics& camera, Map* map, const Tracker* tracker,
                StageTimings* timings);
 
-  // Sets `frame`'s ignored flags (clearing earlier ones) and returns the
-  // removal mask they came from (CV_8UC1, 255 = removed; empty when nothing
-  // is removed, as in mode orb). `depth`: the frame's CV_32FC1 metres (empty:
-  // geometry is skipped). Throws dlslam::Error for a prior of the wrong type
-  // or size.
-  cv::Mat Process(Frame* frame, const cv::Mat& depth, const DynamicInputs& inputs);
+  // The removal mask of `frame` (CV_8UC1, 255 = removed; empty when nothing
+  // is removed, as in mode orb): tracking and mapping get the frame without
+  // the keypoints on it (Frame::WithoutMasked). `depth`: the frame's
+  // CV_32FC1 metres (empty: geometry is skipped). Throws dlslam::Error for a
+  // prior of the wrong type or size.
+  cv::Mat Process(const Frame& frame, const cv::Mat& depth, const DynamicInputs& inputs);
 
   const DynamicStats& stats() const { return stats_; }
 
@@ -86,8 +86,8 @@ class DynamicStage {
   // with an empty mask when it cannot run (not tracking, no keyframe).
   // `estimate_knows_movers`: the estimate already ignored a semantic prior's
   // keypoints, so the labelling is not checked for inversion.
-  dynamic::GeometryResult DetectGeometrically(Frame* frame, const cv::Mat& depth, bool estimate_knows_movers);
-  void CountAgainstTruth(const Frame& frame, const cv::Mat& truth);
+  dynamic::GeometryResult DetectGeometrically(const Frame& frame, const cv::Mat& depth, bool estimate_knows_movers);
+  void CountAgainstTruth(const Frame& frame, const std::vector<bool>& removed, const cv::Mat& truth);
 
   DynamicOptions options_;
   CameraIntrinsics camera_;

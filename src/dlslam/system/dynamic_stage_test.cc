@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "dlslam/util/check.h"
 
 namespace dlslam {
@@ -59,11 +61,11 @@ TEST_F(DynamicStageTest, SemanticModeRemovesThePriorAndCountsAgainstTruth) {
     return dynamic::SemanticMasks{Rectangle(100, 100, 300, 200), Rectangle(400, 300, 600, 400)};
   };
   inputs.moving_truth = Rectangle(200, 100, 400, 200);
-  stage.Process(frame.get(), cv::Mat(), inputs);
+  const cv::Mat removal = stage.Process(*frame, cv::Mat(), inputs);
   const int removed = GridPointsIn(100, 100, 300, 200);
-  int ignored = 0;
-  for (std::size_t i = 0; i < frame->size(); ++i) ignored += frame->ignored(i);
-  EXPECT_EQ(ignored, removed);
+  const std::vector<bool> on = frame->OnMask(removal);
+  EXPECT_EQ(std::count(on.begin(), on.end(), true), removed);
+  EXPECT_EQ(frame->WithoutMasked(removal).size(), frame->size() - removed);
   const DynamicStats& s = stage.stats();
   EXPECT_EQ(s.keypoints_removed, removed);
   EXPECT_EQ(s.frames_with_truth, 1);
@@ -84,14 +86,13 @@ TEST_F(DynamicStageTest, RemovalMaskIsDilated) {
   DynamicInputs inputs;
   // Ends 3 px left of the column of keypoints at x = 208: dilation reaches it.
   inputs.semantic_prior = [] { return dynamic::SemanticMasks{Rectangle(100, 100, 205, 200)}; };
-  stage.Process(frame.get(), cv::Mat(), inputs);
+  stage.Process(*frame, cv::Mat(), inputs);
   EXPECT_EQ(stage.stats().keypoints_removed, GridPointsIn(100, 100, 209, 200));
 }
 
 TEST_F(DynamicStageTest, OrbModeRemovesNothingAndNeverAsksForThePrior) {
   DynamicStage stage = MakeStage(DynamicMode::kOrb);
   auto frame = GridFrame();
-  frame->SetIgnored(0, true);  // stale flags are cleared
   bool asked = false;
   DynamicInputs inputs;
   inputs.semantic_prior = [&asked] {
@@ -99,9 +100,8 @@ TEST_F(DynamicStageTest, OrbModeRemovesNothingAndNeverAsksForThePrior) {
     return dynamic::SemanticMasks{Rectangle(0, 0, 640, 480)};
   };
   inputs.moving_truth = Rectangle(200, 100, 400, 200);
-  stage.Process(frame.get(), cv::Mat(), inputs);
+  EXPECT_TRUE(stage.Process(*frame, cv::Mat(), inputs).empty());
   EXPECT_FALSE(asked);
-  EXPECT_FALSE(frame->ignored(0));
   const DynamicStats& s = stage.stats();
   EXPECT_EQ(s.keypoints_removed, 0);
   EXPECT_EQ(s.false_negatives, GridPointsIn(200, 100, 400, 200));
@@ -112,7 +112,7 @@ TEST_F(DynamicStageTest, OrbModeRemovesNothingAndNeverAsksForThePrior) {
 TEST_F(DynamicStageTest, GeometryWaitsForTracking) {
   DynamicStage stage = MakeStage(DynamicMode::kGeometry);
   auto frame = GridFrame();
-  stage.Process(frame.get(), cv::Mat(kCamera.height, kCamera.width, CV_32FC1, cv::Scalar(2.0)), {});
+  stage.Process(*frame, cv::Mat(kCamera.height, kCamera.width, CV_32FC1, cv::Scalar(2.0)), {});
   EXPECT_EQ(stage.stats().frames_with_geometry, 0);  // the tracker has no pose yet
   EXPECT_EQ(stage.stats().keypoints_removed, 0);
   EXPECT_FALSE(stage.stats().recall().has_value());  // no ground truth
@@ -123,16 +123,16 @@ TEST_F(DynamicStageTest, BadMasksAreErrors) {
   auto frame = GridFrame();
   DynamicInputs inputs;
   inputs.semantic_prior = [] { return dynamic::SemanticMasks{cv::Mat(240, 320, CV_8UC1, cv::Scalar(0))}; };
-  EXPECT_THROW(stage.Process(frame.get(), cv::Mat(), inputs), Error);
+  EXPECT_THROW(stage.Process(*frame, cv::Mat(), inputs), Error);
   inputs.semantic_prior = [] { return dynamic::SemanticMasks{cv::Mat(480, 640, CV_16UC1, cv::Scalar(0))}; };
-  EXPECT_THROW(stage.Process(frame.get(), cv::Mat(), inputs), Error);
+  EXPECT_THROW(stage.Process(*frame, cv::Mat(), inputs), Error);
   inputs.semantic_prior = [] {
     return dynamic::SemanticMasks{cv::Mat(480, 640, CV_8UC1, cv::Scalar(0)), cv::Mat(480, 600, CV_8UC1, cv::Scalar(0))};
   };
-  EXPECT_THROW(stage.Process(frame.get(), cv::Mat(), inputs), Error);
+  EXPECT_THROW(stage.Process(*frame, cv::Mat(), inputs), Error);
   inputs.semantic_prior = nullptr;
   inputs.moving_truth = cv::Mat(480, 640, CV_8UC3, cv::Scalar(0));
-  EXPECT_THROW(stage.Process(frame.get(), cv::Mat(), inputs), Error);
+  EXPECT_THROW(stage.Process(*frame, cv::Mat(), inputs), Error);
 }
 
 TEST(MakeReferenceView, KeypointsWithDepthInWorldCoordinates) {

@@ -108,17 +108,21 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   timings_.Add("orb_extraction", watch.ElapsedMs());
   auto frame = std::make_shared<Frame>(
       Frame::Create(timestamp, features.keypoints, features.descriptors, depth, camera_, pyramid_));
-  const cv::Mat removal = dynamic_.Process(frame.get(), depth, dynamic);
+  const cv::Mat removal = dynamic_.Process(*frame, depth, dynamic);
   if (!removal.empty() && frame->size() > 0) {
-    int removed = 0;
-    for (std::size_t i = 0; i < frame->size(); ++i) removed += frame->ignored(i);
-    if (removed >= options_.reextract_removed_share * static_cast<double>(frame->size())) {
+    // Tracking and mapping see only static keypoints: extracted again
+    // outside the removed regions when many were removed, else the others.
+    const std::vector<bool> removed = frame->OnMask(removal);
+    const auto n_removed = std::count(removed.begin(), removed.end(), true);
+    if (n_removed >= options_.reextract_removed_share * static_cast<double>(frame->size())) {
       watch = Stopwatch();
       const features::OrbFeatures statics = static_extractor_.Extract(colour, removal);
       frame = std::make_shared<Frame>(
           Frame::Create(timestamp, statics.keypoints, statics.descriptors, depth, camera_, pyramid_));
       ++counts_.frames_reextracted;
       timings_.Add("orb_reextraction", watch.ElapsedMs());
+    } else if (n_removed > 0) {
+      frame = std::make_shared<Frame>(frame->WithoutMasked(removal));
     }
   }
   watch = Stopwatch();

@@ -151,7 +151,7 @@ bool Tracker::Coast(const SE3d& refined, int inliers, SE3d* pose) const {
 
 bool Tracker::Initialize(const std::shared_ptr<const Frame>& frame, TrackingResult* result) {
   int with_depth = 0;
-  for (std::size_t i = 0; i < frame->size(); ++i) with_depth += !frame->ignored(i) && frame->keypoint(i).depth > 0;
+  for (std::size_t i = 0; i < frame->size(); ++i) with_depth += frame->keypoint(i).depth > 0;
   if (with_depth < options_.min_init_points) return false;
   const SE3d pose = SE3d::Identity();  // the first keyframe defines the world
   // The first keyframe takes every keypoint with depth (ORB-SLAM's RGB-D
@@ -261,7 +261,7 @@ bool Tracker::NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>&
   int close_tracked = 0, close_untracked = 0;
   for (std::size_t i = 0; i < frame.size(); ++i) {
     const double z = frame.keypoint(i).depth;
-    if (frame.ignored(i) || z <= 0 || z >= options_.close_depth) continue;
+    if (z <= 0 || z >= options_.close_depth) continue;
     (matches[i] != kNoId ? close_tracked : close_untracked)++;
   }
   const bool need_close = close_tracked < 100 && close_untracked > 70;
@@ -280,7 +280,7 @@ KeyFrameId Tracker::InsertKeyFrame(const std::shared_ptr<const Frame>& frame, co
   std::vector<std::pair<double, int>> by_depth;
   for (std::size_t i = 0; i < frame->size(); ++i) {
     const double z = frame->keypoint(i).depth;
-    if (matches[i] == kNoId && !frame->ignored(i) && z > 0) by_depth.emplace_back(z, static_cast<int>(i));
+    if (matches[i] == kNoId && z > 0) by_depth.emplace_back(z, static_cast<int>(i));
   }
   std::sort(by_depth.begin(), by_depth.end());
   const SE3d world_from_cam = pose.Inverse();

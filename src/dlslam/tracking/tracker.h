@@ -105,11 +105,11 @@ class Tracker {
   // lost tracker relocalizes; without, it only retries its reference keyframe.
   Tracker(const TrackerOptions& options, Map* map, const place::KeyFrameIndex* index = nullptr);
 
-  // Tracks one frame. The frame's ignored keypoints are never matched.
+  // Tracks one frame (its static keypoints: Frame::WithoutMasked).
   TrackingResult Track(const std::shared_ptr<const Frame>& frame);
 
   // A first pose for the next frame, without changing the tracker: the
-  // constant-velocity guess refined on the frame's non-ignored keypoints
+  // constant-velocity guess refined on the frame's keypoints
   // (matched to the last frame's points), or the guess itself when that
   // refinement fails. nullopt unless the last frame was tracked. The dynamic
   // stage uses it to test keypoints before the frame is tracked.
