@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   dlslam::app::AddVocabCommand(app);
   dlslam::app::AddSegmentCommand(app);
   dlslam::app::AddBenchCommand(app);
+  dlslam::app::AddCompositeCommand(app);
 
   try {
     app.parse(argc, argv);
