@@ -3,6 +3,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -128,12 +129,45 @@ TEST(SequenceBadInput, EmptyAndCorruptImageFiles) {
               AllOf(HasSubstr("depth/1.png"), HasSubstr("empty file (0 bytes)")));
   // A PNG signature followed by garbage.
   folder.WriteText("rgb/2.png", std::string("\x89PNG\r\n\x1a\n", 8) + "this is not image data");
-  EXPECT_THAT(FrameError(folder, 2), AllOf(HasSubstr("rgb.txt:5"), HasSubstr("cannot decode")));
+  EXPECT_THAT(FrameError(folder, 2), AllOf(HasSubstr("rgb.txt:5"), HasSubstr("PNG")));
   // A real PNG cut in half.
   const auto path = folder.dir() / "depth/0.png";
   const auto size = std::filesystem::file_size(path);
   std::filesystem::resize_file(path, size / 2);
   EXPECT_THAT(FrameError(folder, 0), HasSubstr("depth/0.png"));
+}
+
+// OpenCV decodes a truncated JPEG into grey pixels with only a warning: the
+// frame must fail instead of being tracked as if it were real.
+TEST(SequenceBadInput, TruncatedOrCorruptJpegFailsItsFrame) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(3);
+  cv::Mat image(48, 64, CV_8UC3);  // WriteValidSequence's camera
+  cv::randu(image, 0, 255);
+  std::vector<uchar> jpeg;
+  ASSERT_TRUE(cv::imencode(".jpg", image, jpeg));
+  const auto write = [&](const std::string& name, std::size_t bytes) {
+    std::ofstream(folder.dir() / name, std::ios::binary).write(reinterpret_cast<const char*>(jpeg.data()),
+                                                                static_cast<std::streamsize>(bytes));
+  };
+  write("rgb/0.png", jpeg.size());  // a whole JPEG under a .png name: fine
+  write("rgb/1.png", jpeg.size() * 9 / 10);
+  EXPECT_TRUE(RgbdSequence::Open(folder.dir()).TryLoadFrame(0).ok());
+  EXPECT_THAT(FrameError(folder, 1), AllOf(HasSubstr("rgb/1.png"), HasSubstr("truncated JPEG")));
+}
+
+// A list line naming a device or a FIFO fails that frame at once instead of
+// reading without end (until std::bad_alloc ended the whole run).
+TEST(SequenceBadInput, DevicesAndFifosAreNotImages) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(3);
+  std::filesystem::remove(folder.dir() / "depth/1.png");
+  std::filesystem::create_symlink("/dev/zero", folder.dir() / "depth/1.png");
+  EXPECT_THAT(FrameError(folder, 1), AllOf(HasSubstr("depth/1.png"), HasSubstr("not a regular file")));
+  std::filesystem::remove(folder.dir() / "rgb/2.png");
+  ASSERT_EQ(mkfifo((folder.dir() / "rgb/2.png").c_str(), 0600), 0);
+  EXPECT_THAT(FrameError(folder, 2), AllOf(HasSubstr("rgb/2.png"), HasSubstr("not a regular file")));
+  EXPECT_TRUE(RgbdSequence::Open(folder.dir()).TryLoadFrame(0).ok());
 }
 
 TEST(SequenceBadInput, ColourImageKinds) {
