@@ -54,3 +54,20 @@ TEST(TextTable, ParseDouble) {
 
 }  // namespace
 }  // namespace dlslam::io
+
+namespace dlslam::io {
+namespace {
+
+// A device or FIFO named as a list or trajectory is refused at once instead
+// of being read without end.
+TEST(TextTable, DevicesAreNotFiles) {
+  try {
+    ReadTextTable("/dev/zero");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace dlslam::io
