@@ -1,5 +1,7 @@
 #include "dlslam/data/camera.h"
 
+#include <opencv2/calib3d.hpp>
+
 #include "dlslam/util/check.h"
 
 namespace dlslam {
@@ -51,6 +53,34 @@ CameraIntrinsics CameraPreset(const std::string& name) {
                 "' (known: freiburg1, freiburg2, freiburg3, fr1, fr2, fr3, bonn)");
   }
   return c;
+}
+
+std::vector<Eigen::Vector2f> PixelRays(const CameraIntrinsics& camera) {
+  camera.Check();
+  const int n = camera.width * camera.height;
+  std::vector<Eigen::Vector2f> rays(static_cast<std::size_t>(n));
+  if (!camera.HasDistortion()) {
+    for (int v = 0; v < camera.height; ++v) {
+      for (int u = 0; u < camera.width; ++u) {
+        rays[static_cast<std::size_t>(v * camera.width + u)] = Eigen::Vector2f(
+            static_cast<float>((u - camera.cx) / camera.fx), static_cast<float>((v - camera.cy) / camera.fy));
+      }
+    }
+    return rays;
+  }
+  cv::Mat pixels(n, 1, CV_64FC2);
+  for (int v = 0; v < camera.height; ++v) {
+    for (int u = 0; u < camera.width; ++u) pixels.at<cv::Vec2d>(v * camera.width + u) = cv::Vec2d(u, v);
+  }
+  const cv::Matx33d k(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
+  const cv::Vec<double, 5> distortion(camera.k1, camera.k2, camera.p1, camera.p2, camera.k3);
+  cv::Mat normalised;
+  cv::undistortPoints(pixels, normalised, k, distortion);
+  for (int i = 0; i < n; ++i) {
+    const cv::Vec2d x = normalised.at<cv::Vec2d>(i);
+    rays[static_cast<std::size_t>(i)] = Eigen::Vector2f(static_cast<float>(x[0]), static_cast<float>(x[1]));
+  }
+  return rays;
 }
 
 }  // namespace dlslam

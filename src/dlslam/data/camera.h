@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include <string>
+#include <vector>
 
 namespace dlslam {
 
@@ -39,6 +40,11 @@ struct CameraIntrinsics {
   // Throws dlslam::Error naming the offending value.
   void Check() const;
 };
+
+// The undistorted normalised ray (x/z, y/z) of every pixel centre of the
+// camera's (distorted) image, row-major: what a depth pixel (u, v) with depth
+// z unprojects to, times z. Computed with OpenCV's iterative undistortion.
+std::vector<Eigen::Vector2f> PixelRays(const CameraIntrinsics& camera);
 
 // Published intrinsics of the TUM RGB-D cameras (vision.in.tum.de, "Intrinsic
 // Camera Calibration of the Kinect"). freiburg3 images are already undistorted.

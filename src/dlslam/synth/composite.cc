@@ -1,6 +1,5 @@
 #include "dlslam/synth/composite.h"
 
-#include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -60,20 +59,7 @@ PeopleCompositor::PeopleCompositor(const CameraIntrinsics& camera, std::vector<C
     cutouts_.push_back(std::move(p));
   }
 
-  const int n = camera_.width * camera_.height;
-  cv::Mat pixels(n, 1, CV_64FC2);
-  for (int v = 0; v < camera_.height; ++v) {
-    for (int u = 0; u < camera_.width; ++u) pixels.at<cv::Vec2d>(v * camera_.width + u) = cv::Vec2d(u, v);
-  }
-  const cv::Matx33d k(camera_.fx, 0, camera_.cx, 0, camera_.fy, camera_.cy, 0, 0, 1);
-  const cv::Vec<double, 5> distortion(camera_.k1, camera_.k2, camera_.p1, camera_.p2, camera_.k3);
-  cv::Mat normalised;
-  cv::undistortPoints(pixels, normalised, k, distortion);
-  rays_.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    const cv::Vec2d x = normalised.at<cv::Vec2d>(i);
-    rays_[static_cast<std::size_t>(i)] = Eigen::Vector2f(static_cast<float>(x[0]), static_cast<float>(x[1]));
-  }
+  rays_ = PixelRays(camera_);
 
   // The walkers' lines, horizontal, each in front of the camera of a random frame.
   up_ = -camera_path.front().world_from_cam().rotationMatrix().col(1);
