@@ -15,7 +15,7 @@ void AddInfoCommand(CLI::App& app);     // info.cc: what a sequence folder holds
 void AddRunCommand(CLI::App& app);      // run.cc: SLAM on a sequence
 void AddVocabCommand(CLI::App& app);    // vocab.cc: bag-of-words vocabularies (train, info)
 void AddSegmentCommand(CLI::App& app);  // segment.cc: dynamic-object masks from the segmentation network
-void AddBenchCommand(CLI::App& app);
-void AddCompositeCommand(CLI::App& app);  // composite.cc: real people walked through a real static sequence    // bench.cc: the whole system timed stage by stage, per mode
+void AddBenchCommand(CLI::App& app);    // bench.cc: the whole system timed stage by stage, per mode
+void AddCompositeCommand(CLI::App& app);  // composite.cc: real people walked through a real static sequence
 
 }  // namespace dlslam::app

@@ -14,7 +14,9 @@ TextTable ReadTextTable(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) throw InputError(path, 0, "file not found");
   if (std::filesystem::is_directory(path)) throw InputError(path, 0, "is a directory, expected a file");
   // A device or FIFO (/dev/zero) would be read without end.
-  if (!std::filesystem::is_regular_file(path)) throw InputError(path, 0, "not a regular file (a device, FIFO or socket)");
+  if (!std::filesystem::is_regular_file(path)) {
+    throw InputError(path, 0, "not a regular file (a device, FIFO or socket)");
+  }
   constexpr std::uintmax_t kMaxTextBytes = 1ull << 30;  // lists and trajectories are far smaller
   std::error_code ec;
   if (const std::uintmax_t size = std::filesystem::file_size(path, ec); !ec && size > kMaxTextBytes) {

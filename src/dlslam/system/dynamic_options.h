@@ -47,8 +47,7 @@ struct DynamicOptions {
   // keypoints). Not in frames with a semantic prior: the estimate already
   // left the prior's keypoints out.
   bool resolve_inverted_check = true;
-
-  double inverted_check_min_share = 0.15;
+  double inverted_check_min_share = 0.15;  // (0, 1]
 
   void Check() const;
 };

@@ -1,5 +1,3 @@
-#include <cstdlib>
-#include <spdlog/spdlog.h>
 #include "dlslam/system/dynamic_stage.h"
 
 #include <algorithm>
@@ -52,9 +50,9 @@ DynamicStage::DynamicStage(const DynamicOptions& options, const CameraIntrinsics
   stats_.fusion = options_.fusion.policy;
 }
 
-cv::Mat DynamicStage::Process(const Frame& frame, const cv::Mat& depth, const DynamicInputs& inputs) {
+DynamicRemoval DynamicStage::Process(const Frame& frame, const cv::Mat& depth, const DynamicInputs& inputs) {
   stats_.keypoints_total += static_cast<std::int64_t>(frame.size());
-  cv::Mat removal;
+  DynamicRemoval removal;
   if (options_.mode != DynamicMode::kOrb) {
     const dynamic::SemanticMasks prior =
         UsesSemanticPrior(options_.mode) ? SemanticPrior(inputs) : dynamic::SemanticMasks{};
@@ -73,13 +71,13 @@ cv::Mat DynamicStage::Process(const Frame& frame, const cv::Mat& depth, const Dy
     if (options_.mode == DynamicMode::kSemantic) fusion.policy = dynamic::FusionPolicy::kSemanticOnly;
     if (options_.mode == DynamicMode::kGeometry) fusion.policy = dynamic::FusionPolicy::kGeometryOnly;
     int movables_dropped = 0;
-    removal = dynamic::FuseDynamicMasks(prior, geometry, fusion, &movables_dropped);
+    removal.mask = dynamic::FuseDynamicMasks(prior, geometry, fusion, &movables_dropped);
     stats_.movable_segments_dropped += movables_dropped;
   }
-  std::vector<bool> removed(frame.size(), false);
-  if (!removal.empty()) removed = frame.OnMask(removal);
-  stats_.keypoints_removed += std::count(removed.begin(), removed.end(), true);
-  if (!inputs.moving_truth.empty()) CountAgainstTruth(frame, removed, inputs.moving_truth);
+  removal.keypoints = removal.mask.empty() ? std::vector<bool>(frame.size(), false) : frame.OnMask(removal.mask);
+  removal.count = static_cast<std::size_t>(std::count(removal.keypoints.begin(), removal.keypoints.end(), true));
+  stats_.keypoints_removed += static_cast<std::int64_t>(removal.count);
+  if (!inputs.moving_truth.empty()) CountAgainstTruth(frame, removal.keypoints, inputs.moving_truth);
   return removal;
 }
 
@@ -112,7 +110,10 @@ dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, co
   }
   if (views.empty()) return {};
   dynamic::GeometryResult result = detector_.Detect(depth, camera_, *cam_from_world, views);
-  const double share = cv::countNonZero(result.dynamic_mask) / static_cast<double>(result.dynamic_mask.total());
+  const auto share_of_image = [](const cv::Mat& mask) {
+    return cv::countNonZero(mask) / static_cast<double>(mask.total());
+  };
+  const double share = share_of_image(result.dynamic_mask);
   if (options_.resolve_inverted_check && !estimate_knows_movers && share >= options_.inverted_check_min_share) {
     // Perhaps the estimate followed the movers, and what moves is the rest:
     // estimate again from the keypoints inside the "moving" region only,
@@ -120,10 +121,8 @@ dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, co
     const std::optional<SE3d> other = tracker_->EstimatePose(frame.Subset(frame.OnMask(result.dynamic_mask)));
     if (other) {
       dynamic::GeometryResult alternative = detector_.Detect(depth, camera_, *other, views);
-      const double other_share =
-          cv::countNonZero(alternative.dynamic_mask) / static_cast<double>(alternative.dynamic_mask.total());
       ++stats_.inverted_checks_tried;
-      if (other_share < share) {
+      if (share_of_image(alternative.dynamic_mask) < share) {
         result = std::move(alternative);
         ++stats_.inverted_checks_resolved;
       }

@@ -3,13 +3,15 @@
 // and tracking: waits for the semantic prior, tests the frame's depth against
 // earlier keyframes (multi-view geometry with the tracker's first pose
 // estimate), fuses both into one removal mask (SlamSystem gives tracking the
-// frame without its keypoints), and culls map points that moved away. Runs on the tracking thread;
-// it reads the map through copies and writes to it only through Map's
-// locked calls, so the local-mapping thread may run alongside.
+// frame without its keypoints), and culls map points that moved away. Runs
+// on the tracking thread; it reads the map through copies and writes to it
+// only through Map's locked calls, so the local-mapping thread may run
+// alongside.
 
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "dlslam/data/frame.h"
 #include "dlslam/map/map.h"
@@ -61,6 +63,13 @@ struct DynamicStats {
   std::optional<double> recall() const;
 };
 
+// What the dynamic stage removes from a frame.
+struct DynamicRemoval {
+  cv::Mat mask;                  // CV_8UC1, 255 = removed; empty when nothing is (mode orb)
+  std::vector<bool> keypoints;   // per keypoint of the frame: on the mask
+  std::size_t count = 0;         // keypoints on the mask
+};
+
 // A keyframe's keypoints that have depth, in world coordinates, with the map
 // point each holds (kNoId if none): what the geometric check projects.
 dynamic::ReferenceView MakeReferenceView(const KeyFrameSnapshot& keyframe);
@@ -71,12 +80,11 @@ class DynamicStage {
   DynamicStage(const DynamicOptions& options, const CameraIntrinsics& camera, Map* map, const Tracker* tracker,
                StageTimings* timings);
 
-  // The removal mask of `frame` (CV_8UC1, 255 = removed; empty when nothing
-  // is removed, as in mode orb): tracking and mapping get the frame without
-  // the keypoints on it (Frame::WithoutMasked). `depth`: the frame's
-  // CV_32FC1 metres (empty: geometry is skipped). Throws dlslam::Error for a
-  // prior of the wrong type or size.
-  cv::Mat Process(const Frame& frame, const cv::Mat& depth, const DynamicInputs& inputs);
+  // What to remove from `frame`: tracking and mapping get the frame without
+  // those keypoints (SlamSystem). `depth`: the frame's CV_32FC1 metres
+  // (empty: geometry is skipped). Throws dlslam::Error for a prior of the
+  // wrong type or size.
+  DynamicRemoval Process(const Frame& frame, const cv::Mat& depth, const DynamicInputs& inputs);
 
   const DynamicStats& stats() const { return stats_; }
 

@@ -61,11 +61,13 @@ TEST_F(DynamicStageTest, SemanticModeRemovesThePriorAndCountsAgainstTruth) {
     return dynamic::SemanticMasks{Rectangle(100, 100, 300, 200), Rectangle(400, 300, 600, 400)};
   };
   inputs.moving_truth = Rectangle(200, 100, 400, 200);
-  const cv::Mat removal = stage.Process(*frame, cv::Mat(), inputs);
+  const DynamicRemoval removal = stage.Process(*frame, cv::Mat(), inputs);
   const int removed = GridPointsIn(100, 100, 300, 200);
-  const std::vector<bool> on = frame->OnMask(removal);
+  const std::vector<bool> on = frame->OnMask(removal.mask);
   EXPECT_EQ(std::count(on.begin(), on.end(), true), removed);
-  EXPECT_EQ(frame->WithoutMasked(removal).size(), frame->size() - removed);
+  EXPECT_EQ(removal.keypoints, on);
+  EXPECT_EQ(removal.count, static_cast<std::size_t>(removed));
+  EXPECT_EQ(frame->WithoutMasked(removal.mask).size(), frame->size() - removed);
   const DynamicStats& s = stage.stats();
   EXPECT_EQ(s.keypoints_removed, removed);
   EXPECT_EQ(s.frames_with_truth, 1);
@@ -100,7 +102,9 @@ TEST_F(DynamicStageTest, OrbModeRemovesNothingAndNeverAsksForThePrior) {
     return dynamic::SemanticMasks{Rectangle(0, 0, 640, 480)};
   };
   inputs.moving_truth = Rectangle(200, 100, 400, 200);
-  EXPECT_TRUE(stage.Process(*frame, cv::Mat(), inputs).empty());
+  const DynamicRemoval removal = stage.Process(*frame, cv::Mat(), inputs);
+  EXPECT_TRUE(removal.mask.empty());
+  EXPECT_EQ(removal.count, 0u);
   EXPECT_FALSE(asked);
   const DynamicStats& s = stage.stats();
   EXPECT_EQ(s.keypoints_removed, 0);

@@ -108,26 +108,27 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   timings_.Add("orb_extraction", watch.ElapsedMs());
   auto frame = std::make_shared<Frame>(
       Frame::Create(timestamp, features.keypoints, features.descriptors, depth, camera_, pyramid_));
-  const cv::Mat removal = dynamic_.Process(*frame, depth, dynamic);
-  if (!removal.empty() && frame->size() > 0) {
+  const DynamicRemoval removal = dynamic_.Process(*frame, depth, dynamic);
+  if (removal.count > 0) {
     // Tracking and mapping see only static keypoints: extracted again
     // outside the removed regions when many were removed, else the others.
-    const std::vector<bool> removed = frame->OnMask(removal);
-    const auto n_removed = std::count(removed.begin(), removed.end(), true);
-    if (n_removed >= options_.reextract_removed_share * static_cast<double>(frame->size())) {
+    if (static_cast<double>(removal.count) >= options_.reextract_removed_share * static_cast<double>(frame->size())) {
       watch = Stopwatch();
-      const features::OrbFeatures statics = static_extractor_.Extract(colour, removal);
+      const features::OrbFeatures statics = static_extractor_.Extract(colour, removal.mask);
       frame = std::make_shared<Frame>(
           Frame::Create(timestamp, statics.keypoints, statics.descriptors, depth, camera_, pyramid_));
       ++counts_.frames_reextracted;
       timings_.Add("orb_reextraction", watch.ElapsedMs());
-    } else if (n_removed > 0) {
-      frame = std::make_shared<Frame>(frame->WithoutMasked(removal));
+    } else {
+      std::vector<bool> keep = removal.keypoints;
+      keep.flip();
+      frame = std::make_shared<Frame>(frame->Subset(keep));
     }
   }
   watch = Stopwatch();
   const TrackingResult result = tracker_.Track(frame);
   timings_.Add("tracking", watch.ElapsedMs());
+  // Attempts on frames without features (black, covered) cost nothing and
   // would only pull the median down.
   if (result.relocalization_ms >= 0 && frame->size() > 0) {
     timings_.Add("relocalization_attempt", result.relocalization_ms);
@@ -151,7 +152,9 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     case TrackingState::kLost: ++counts_.frames_lost; break;
     case TrackingState::kNotInitialized: ++counts_.frames_waiting; break;
   }
-  if (source != PoseSource::kNone) tracked_.push_back({timestamp, result.reference_keyframe, result.cam_from_reference});
+  if (source != PoseSource::kNone) {
+    tracked_.push_back({timestamp, result.reference_keyframe, result.cam_from_reference});
+  }
   sources_.push_back({timestamp, source});
   timings_.Add("frame_total", total.ElapsedMs());
   return result;

@@ -136,8 +136,7 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
 bool Tracker::Coast(const SE3d& refined, int inliers, SE3d* pose) const {
   if (coasted_frames_ >= options_.max_coasting_frames || !last_pose_) return false;
   if (state_ != TrackingState::kOk && state_ != TrackingState::kCoasting) return false;
-  const SE3d last = LastPose();
-  const SE3d predicted = velocity_ ? *velocity_ * last : last;
+  const SE3d predicted = PredictedPose();
   *pose = predicted;
   if (inliers < options_.min_coasting_inliers) return true;
   const SE3d correction = refined * predicted.Inverse();
@@ -170,9 +169,7 @@ bool Tracker::Initialize(const std::shared_ptr<const Frame>& frame, TrackingResu
 
 std::optional<SE3d> Tracker::EstimatePose(const Frame& frame) const {
   if ((state_ != TrackingState::kOk && state_ != TrackingState::kCoasting) || !last_pose_) return std::nullopt;
-  // Right after a keyframe or a relocation there is no velocity: assume none.
-  const SE3d last = LastPose();
-  const SE3d guess = velocity_ ? *velocity_ * last : last;
+  const SE3d guess = PredictedPose();
   SE3d pose;
   std::vector<MapPointId> matches;
   if (TrackWithMotionModel(frame, &pose, &matches)) return pose;
@@ -180,8 +177,7 @@ std::optional<SE3d> Tracker::EstimatePose(const Frame& frame) const {
 }
 
 bool Tracker::TrackWithMotionModel(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches) const {
-  const SE3d last = LastPose();
-  *pose = velocity_ ? *velocity_ * last : last;
+  *pose = PredictedPose();
   const std::vector<MapPointView> points = map_->GetPoints(MatchedIds(last_matches_));
   ProjectionMatchOptions search;
   search.radius = options_.motion_search_radius;
@@ -234,6 +230,12 @@ int Tracker::TrackLocalMap(const Frame& frame, SE3d* pose, std::vector<MapPointI
 int Tracker::OptimizeAndPrune(const Frame& frame, const std::vector<MapPointView>& points, SE3d* pose,
                               std::vector<MapPointId>* matches) const {
   return dlslam::OptimizeAndPrune(frame, points, options_.pose, pose, matches);
+}
+
+SE3d Tracker::PredictedPose() const {
+  // Right after a keyframe or a relocation there is no velocity: assume none.
+  const SE3d last = LastPose();
+  return velocity_ ? *velocity_ * last : last;
 }
 
 SE3d Tracker::LastPose() const {

@@ -142,6 +142,8 @@ class Tracker {
   // have moved the map since (Map::Generation), and the frame moves with the
   // keyframe it was tracked against.
   SE3d LastPose() const;
+  // The constant-velocity prediction from LastPose (LastPose itself without a velocity).
+  SE3d PredictedPose() const;
   // `generation`: the map's when the pose was computed.
   void RememberPose(const SE3d& pose, KeyFrameId reference, std::uint64_t generation);
   bool NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches, KeyFrameId reference) const;
