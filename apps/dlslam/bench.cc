@@ -19,6 +19,8 @@
 #include <thread>
 #include <vector>
 
+#include "cli_checks.h"
+#include "dlslam/data/camera.h"
 #include "commands.h"
 #include "dlslam/io/file_util.h"
 #include "dlslam/io/sequence.h"
@@ -226,20 +228,20 @@ void AddBenchCommand(CLI::App& app) {
   cmd->add_option("--sequence", args->sequence, "RGB-D sequence folder (TUM layout); default: render --preset");
   cmd->add_option("--preset", args->preset, "Synthetic preset to render when no --sequence is given")
       ->capture_default_str();
-  cmd->add_option("--frames", args->frames, "Frames of the preset")->capture_default_str()->check(CLI::Range(30, 100000));
-  cmd->add_option("--max-frames", args->max_frames, "Stop each run after this many frames (0 = all)");
+  cmd->add_option("--frames", args->frames, "Frames of the preset")->capture_default_str()->check(WholeNumber(30, 100000));
+  cmd->add_option("--max-frames", args->max_frames, "Stop each run after this many frames (0 = all)")->check(WholeNumber(0, 1000000000));
   cmd->add_option("--modes", args->modes, "Comma-separated modes: orb, semantic, geometry, full")->capture_default_str();
   cmd->add_flag("--sequential", args->sequential, "Run local mapping inline (default: threaded, as deployed)");
   cmd->add_option("--segment-every", args->segment_every,
                   "Modes semantic, full: segment every k-th frame, propagating the mask to the frames between")
       ->capture_default_str()
-      ->check(CLI::Range(1, 100));
+      ->check(WholeNumber(1, 100));
   cmd->add_option("--camera-hz", args->camera_hz, "Camera frame rate: the budget per frame is 1000 / Hz ms")
-      ->capture_default_str();
+      ->capture_default_str()->check(RealNumber(0.1, 1000));
   cmd->add_option("--out", args->out, "Output folder: bench.json, per-mode reports and trajectories")
       ->capture_default_str();
   cmd->add_option("--camera", args->sequence_options.camera_preset, "Camera preset: fr1, fr2, fr3, bonn");
-  cmd->add_option("--depth-factor", args->sequence_options.depth_factor, "Raw depth units per metre");
+  cmd->add_option("--depth-factor", args->sequence_options.depth_factor, "Raw depth units per metre")->check(RealNumber(kMinDepthFactor, kMaxDepthFactor));
   cmd->callback([args] { RunBench(*args); });
 }
 

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_checks.h"
 #include "commands.h"
 #include "dlslam/io/image_io.h"
 #include "dlslam/io/sequence.h"
@@ -140,17 +141,17 @@ void AddCompositeCommand(CLI::App& app) {
   cmd->add_option("--out", args->out, "Output folder (TUM layout with mask.txt; refuses a non-empty folder)")
       ->required();
   cmd->add_flag("--force", args->force, "Write into a non-empty folder anyway (deletes nothing)");
-  cmd->add_option("--frames", args->max_frames, "At most this many frames (0 = all)");
+  cmd->add_option("--frames", args->max_frames, "At most this many frames (0 = all)")->check(WholeNumber(0, 1000000000));
   synth::CompositeOptions& o = args->options;
-  cmd->add_option("--count", o.people, "People walking at once")->capture_default_str()->check(CLI::Range(1, 20));
-  cmd->add_option("--seed", o.seed, "Seed: photos, distances, directions")->capture_default_str();
+  cmd->add_option("--count", o.people, "People walking at once")->capture_default_str()->check(WholeNumber(1, 20));
+  cmd->add_option("--seed", o.seed, "Seed: photos, distances, directions")->capture_default_str()->check(WholeNumber(0, 4294967295));
   cmd->add_option("--min-distance", o.min_distance_m, "Nearest walking line in front of the first camera [m]")
-      ->capture_default_str();
-  cmd->add_option("--max-distance", o.max_distance_m, "Farthest walking line [m]")->capture_default_str();
-  cmd->add_option("--speed", o.speed_mps, "Walking speed [m/s]")->capture_default_str();
+      ->capture_default_str()->check(RealNumber(0.3, 100));
+  cmd->add_option("--max-distance", o.max_distance_m, "Farthest walking line [m]")->capture_default_str()->check(RealNumber(0.3, 100));
+  cmd->add_option("--speed", o.speed_mps, "Walking speed [m/s]")->capture_default_str()->check(RealNumber(0, 10));
   cmd->add_option("--path-length", o.path_length_m, "Length of the line walked back and forth [m]")
-      ->capture_default_str();
-  cmd->add_option("--height", o.height_m, "Person height [m]")->capture_default_str();
+      ->capture_default_str()->check(RealNumber(0.1, 100));
+  cmd->add_option("--height", o.height_m, "Person height [m]")->capture_default_str()->check(RealNumber(0.5, 3));
   cmd->callback([args] { RunComposite(*args); });
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_checks.h"
 #include "commands.h"
 #include "dlslam/datasets/catalogue.h"
 #include "dlslam/datasets/fetch.h"
@@ -90,10 +91,10 @@ void AddDatasetCommand(CLI::App& app) {
   fetch->add_flag("-q,--quiet", args->quiet, "No progress bar, warnings and errors only");
   fetch->add_option("--retries", args->options.download.max_retries,
                     "Retries after a transient network error, with back-off")
-      ->capture_default_str();
+      ->capture_default_str()->check(WholeNumber(0, 100));
   fetch->add_option("--connect-timeout", args->options.download.connect_timeout_s,
                     "Seconds allowed to open a connection")
-      ->capture_default_str();
+      ->capture_default_str()->check(RealNumber(0.1, 3600));
   fetch->callback([args] { RunFetch(*args); });
 }
 

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli_checks.h"
 #include "commands.h"
 #include "dlslam/eval/plot.h"
 #include "dlslam/io/file_util.h"
@@ -97,8 +98,8 @@ void AddDemoCommand(CLI::App& app) {
   auto args = std::make_shared<DemoArgs>();
   CLI::App* cmd = app.add_subcommand("demo", "The bundled default run: synthetic sequences -> SLAM -> ATE");
   cmd->add_option("--out", args->out, "Output folder")->capture_default_str();
-  cmd->add_option("--frames", args->frames, "Frames per sequence")->capture_default_str()->check(CLI::Range(30, 100000));
-  cmd->add_option("--seed", args->seed, "Seed of the synthetic scenes")->capture_default_str();
+  cmd->add_option("--frames", args->frames, "Frames per sequence")->capture_default_str()->check(WholeNumber(30, 100000));
+  cmd->add_option("--seed", args->seed, "Seed of the synthetic scenes")->capture_default_str()->check(WholeNumber(0, 4294967295));
   cmd->callback([args] { RunDemo(*args); });
 }
 

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "cli_checks.h"
 #include "commands.h"
 #include "dlslam/eval/ate.h"
 #include "dlslam/eval/plot.h"
@@ -33,9 +34,9 @@ void AddCommonOptions(CLI::App* cmd, EvalArgs& args) {
   cmd->add_option("--gt", args.gt, "Ground-truth trajectory (TUM format)")->required();
   cmd->add_option("--est", args.est, "Estimated trajectory (TUM format)")->required();
   cmd->add_option("--offset", args.offset, "Time offset added to the estimate's timestamps [s]")
-      ->capture_default_str();
+      ->capture_default_str()->check(RealNumber(-1e9, 1e9));
   cmd->add_option("--scale", args.scale, "Scale applied to the estimate's translations")
-      ->capture_default_str();
+      ->capture_default_str()->check(RealNumber(1e-9, 1e9));
   cmd->add_flag("--json", args.json, "Print the result as one line of JSON");
   cmd->add_option("--plot", args.plot, "Write a plot: out.svg or out.png");
 }
@@ -119,7 +120,7 @@ void AddEvalCommand(CLI::App& app) {
   AddCommonOptions(ate, *ate_args);
   ate->add_option("--max-diff", ate_options->max_diff,
                   "Largest time difference of matched poses [s]")
-      ->capture_default_str();
+      ->capture_default_str()->check(RealNumber(1e-9, 1000));
   ate->callback([ate_args, ate_options] {
     ate_options->offset = ate_args->offset;
     ate_options->scale = ate_args->scale;
@@ -133,7 +134,7 @@ void AddEvalCommand(CLI::App& app) {
       "rpe", "Relative pose error over a fixed delta (evaluate_rpe.py --fixed_delta, all pairs)");
   AddCommonOptions(rpe, *rpe_args);
   rpe->add_option("--delta", rpe_options->delta, "Distance between the poses of a pair, in --delta-unit")
-      ->capture_default_str();
+      ->capture_default_str()->check(RealNumber(1e-9, 1e9));
   rpe->add_option("--delta-unit", *rpe_unit, "s | m | rad | deg | f (seconds, metres, radians, degrees, frames)")
       ->check(CLI::IsMember({"s", "m", "rad", "deg", "f"}))
       ->capture_default_str();

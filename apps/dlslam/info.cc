@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "cli_checks.h"
+#include "dlslam/data/camera.h"
 #include "commands.h"
 #include "dlslam/io/association.h"
 #include "dlslam/io/sequence.h"
@@ -141,13 +143,13 @@ void AddInfoCommand(CLI::App& app) {
                   "Camera preset: fr1, fr2, fr3 (freiburg1..3), bonn");
   cmd->add_option("--settings", args->settings, "Camera settings file (ORB-SLAM3 YAML)");
   cmd->add_option("--depth-factor", args->options.depth_factor,
-                  "Raw depth units per metre (TUM/Bonn 5000, millimetres 1000)");
+                  "Raw depth units per metre (TUM/Bonn 5000, millimetres 1000)")->check(RealNumber(kMinDepthFactor, kMaxDepthFactor));
   cmd->add_option(
       "--associations", args->associations,
       "Association file 't_rgb rgb/x.png t_depth depth/y.png' instead of rgb.txt/depth.txt");
   cmd->add_option("--max-diff", args->options.max_association_diff,
                   "Largest RGB/depth time difference in seconds")
-      ->capture_default_str();
+      ->capture_default_str()->check(RealNumber(1e-6, 1000));
   cmd->add_flag("--check-all", args->check_all, "Read every frame; non-zero exit if any is bad");
   cmd->callback([args] { RunInfo(*args); });
 }

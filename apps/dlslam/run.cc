@@ -7,6 +7,8 @@
 #include <fstream>
 #include <memory>
 
+#include "cli_checks.h"
+#include "dlslam/data/camera.h"
 #include "commands.h"
 #include "dlslam/io/file_util.h"
 #include "dlslam/io/sequence.h"
@@ -194,7 +196,7 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("--segment-every", args->segment_every,
                   "Segment every k-th frame, propagating the mask to the frames between")
       ->capture_default_str()
-      ->check(CLI::Range(1, 100));
+      ->check(WholeNumber(1, 100));
   cmd->add_flag("--sequential", args->sequential,
                 "Run local mapping inline: deterministic, reproducible bit for bit");
   cmd->add_flag("--no-relocalization", args->no_relocalization, "Do not relocalize a lost camera");
@@ -208,10 +210,10 @@ void AddRunCommand(CLI::App& app) {
                   "Local bundle adjustment: lm (our sparse Levenberg-Marquardt) or ceres")
       ->capture_default_str()
       ->check(CLI::IsMember({"lm", "ceres"}));
-  cmd->add_option("--max-frames", args->max_frames, "Stop after this many frames (0 = all)");
+  cmd->add_option("--max-frames", args->max_frames, "Stop after this many frames (0 = all)")->check(WholeNumber(0, 1000000000));
   cmd->add_option("--camera", args->sequence_options.camera_preset, "Camera preset: fr1, fr2, fr3, bonn");
   cmd->add_option("--settings", args->sequence_options.settings_file, "ORB-SLAM3-style settings YAML");
-  cmd->add_option("--depth-factor", args->sequence_options.depth_factor, "Raw depth units per metre");
+  cmd->add_option("--depth-factor", args->sequence_options.depth_factor, "Raw depth units per metre")->check(RealNumber(kMinDepthFactor, kMaxDepthFactor));
   cmd->add_option("--associations", args->sequence_options.associations_file, "RGB-depth association file");
   cmd->callback([args] { RunSequence(*args); });
 }

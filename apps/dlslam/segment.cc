@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_checks.h"
 #include "commands.h"
 #include "dlslam/datasets/progress_bar.h"
 #include "dlslam/io/file_util.h"
@@ -173,14 +174,14 @@ void AddSegmentCommand(CLI::App& app) {
                   "ONNX model (default: the shipped one from $DLSLAM_MODEL_DIR, the install or the source tree)");
   cmd->add_option("--margin", args->margin_px, "Dilation of the dynamic mask [px]")
       ->capture_default_str()
-      ->check(CLI::Range(0, 100));
+      ->check(WholeNumber(0, 100));
   cmd->add_option("--threads", args->threads, "OpenCV threads (0 = OpenCV's default)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 256));
+      ->check(WholeNumber(0, 256));
   cmd->add_option("--every", args->every,
                   "--sequence: segment every k-th frame; the frames between reuse the last mask, grown")
       ->capture_default_str()
-      ->check(CLI::Range(1, 1000));
+      ->check(WholeNumber(1, 1000));
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
   cmd->callback([args] {
     if (args->image.empty() == args->sequence.empty()) throw Error("give --image IMG or --sequence DIR");

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "cli_checks.h"
 #include "commands.h"
 #include "synth_run.h"
 #include "dlslam/io/sequence_writer.h"
@@ -115,8 +116,8 @@ void AddSynthCommand(CLI::App& app) {
                                         "Number of frames (loop: default 1125 = two laps and 1.5 s; "
                                         "with --replay: at most, default all)")
                             ->capture_default_str()
-                            ->check(CLI::Range(1, 100000000));
-  cmd->add_option("--seed", args->seed, "Seed: the same seed gives byte-identical files")->capture_default_str();
+                            ->check(WholeNumber(1, 100000000));
+  cmd->add_option("--seed", args->seed, "Seed: the same seed gives byte-identical files")->capture_default_str()->check(WholeNumber(0, 4294967295));
   cmd->add_option("--out", args->out, "Output folder (created; refuses a non-empty folder it did not write)")
       ->required();
   cmd->add_flag("--force", args->force, "Write into a non-empty folder anyway (deletes nothing)");
@@ -127,7 +128,7 @@ void AddSynthCommand(CLI::App& app) {
   cmd->add_flag("--no-ceiling", args->no_ceiling, "Leave the room open at the top");
   cmd->add_option("--motion-blur", args->motion_blur, "Instants averaged over the exposure (1 = off)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 16));
+      ->check(WholeNumber(1, 16));
   cmd->callback([args, frames] { RunSynth(*args, frames->count() > 0); });
 }
 

@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli_checks.h"
 #include "commands.h"
 #include "dlslam/features/orb_extractor.h"
 #include "dlslam/io/file_util.h"
@@ -188,21 +189,21 @@ void AddVocabCommand(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingDirectory);
   train->add_option("--out", train_args->out, "Vocabulary file to write (.dlv)")->required();
-  train->add_option("--k", train_args->options.branching, "Branching factor")->capture_default_str();
-  train->add_option("--levels", train_args->options.levels, "Tree levels below the root")->capture_default_str();
-  train->add_option("--max-features", train_args->max_features, "ORB features per image")->capture_default_str();
+  train->add_option("--k", train_args->options.branching, "Branching factor")->capture_default_str()->check(WholeNumber(2, 255));
+  train->add_option("--levels", train_args->options.levels, "Tree levels below the root")->capture_default_str()->check(WholeNumber(1, 16));
+  train->add_option("--max-features", train_args->max_features, "ORB features per image")->capture_default_str()->check(WholeNumber(1, 100000));
   train->add_option("--max-images", train_args->max_images, "Use at most N images, spread over the list (0 = all)")
-      ->capture_default_str();
+      ->capture_default_str()->check(WholeNumber(0, 1000000000));
   train->add_option("--max-side", train_args->max_side,
                     "Shrink larger images to this longer side first [px] (0 = keep)")
-      ->capture_default_str();
+      ->capture_default_str()->check(WholeNumber(0, 100000));
   train->add_flag("--skip-unreadable", train_args->skip_unreadable,
                   "Skip files that are not 8-bit colour images (e.g. 16-bit depth) with a warning, instead of failing");
   train->add_option("--iterations", train_args->options.max_iterations, "k-means iterations per node, at most")
-      ->capture_default_str();
+      ->capture_default_str()->check(WholeNumber(1, 10000));
   train->add_option("--seed", train_args->options.seed, "Seed (same seed and images: same file)")
-      ->capture_default_str();
-  train->add_option("--threads", train_args->options.threads, "Threads (0 = all cores)")->capture_default_str();
+      ->capture_default_str()->check(WholeNumber(0, 9223372036854775807));
+  train->add_option("--threads", train_args->options.threads, "Threads (0 = all cores)")->capture_default_str()->check(WholeNumber(0, 256));
   train->callback([train_args] { RunTrain(*train_args); });
 
   auto info_file = std::make_shared<std::string>();

@@ -2,6 +2,9 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 #include "dlslam/util/check.h"
 
 namespace dlslam {
@@ -14,15 +17,74 @@ Eigen::Vector2d CameraIntrinsics::Distort(const Eigen::Vector2d& xn) const {
           y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y};
 }
 
+namespace {
+
+// Why the radial distortion is not a lens: it must grow monotonically from the
+// centre to the farthest image corner and scale no radius by more than
+// kMaxRadialScale either way (k1 = 1e10 squeezes the whole image into a
+// fraction of a degree, and undistortion then returns garbage).
+std::string RadialDistortionProblem(const CameraIntrinsics& c) {
+  constexpr double kMaxRadialScale = 4.0;
+  double corner = 0;  // normalised radius of the farthest corner (distorted)
+  for (const double u : {0.0, double(c.width)}) {
+    for (const double v : {0.0, double(c.height)}) {
+      corner = std::max(corner, std::hypot((u - c.cx) / c.fx, (v - c.cy) / c.fy));
+    }
+  }
+  const auto radius = [&](double r) {
+    const double r2 = r * r;
+    return r * (1 + r2 * (c.k1 + r2 * (c.k2 + r2 * c.k3)));
+  };
+  const double step = corner / 200;
+  double previous = 0;
+  for (double r = step; r <= kMaxRadialScale * corner; r += step) {
+    const double distorted = radius(r);
+    if (!(distorted > previous)) {
+      return fmt::format("folds back at normalised radius {:.3g} (not monotonic inside the image)", r);
+    }
+    const double scale = distorted / r;
+    if (!(scale <= kMaxRadialScale && scale >= 1 / kMaxRadialScale)) {
+      return fmt::format("scales radius {:.3g} by {:.3g} (a lens stays within {}x)", r, scale,
+                         kMaxRadialScale);
+    }
+    if (distorted >= corner) return {};
+    previous = distorted;
+  }
+  return "never reaches the image corner";
+}
+
+}  // namespace
+
 void CameraIntrinsics::Check() const {
-  DLSLAM_CHECK_GT(width, 0, "camera '{}'", name);
-  DLSLAM_CHECK_GT(height, 0, "camera '{}'", name);
-  DLSLAM_CHECK_GT(fx, 0.0, "camera '{}'", name);
-  DLSLAM_CHECK_GT(fy, 0.0, "camera '{}'", name);
-  DLSLAM_CHECK(cx >= 0 && cx < width, "camera '{}': cx {} outside [0, {})", name, cx, width);
-  DLSLAM_CHECK(cy >= 0 && cy < height, "camera '{}': cy {} outside [0, {})", name, cy, height);
-  DLSLAM_CHECK_GT(depth_factor, 0.0, "camera '{}'", name);
-  DLSLAM_CHECK_GT(bf, 0.0, "camera '{}'", name);
+  // Plain messages, not internal checks: a bad camera usually comes from a
+  // user's file, and the caller adds which one.
+  const auto fail = [&](const std::string& what) {
+    throw Error(fmt::format("camera '{}': {}", name, what));
+  };
+  if (!(width > 0 && width <= kMaxImageSide && height > 0 && height <= kMaxImageSide)) {
+    fail(fmt::format("image size {}x{} outside 1..{}", width, height, kMaxImageSide));
+  }
+  if (!(fx >= kMinFocal && fx <= kMaxFocal && fy >= kMinFocal && fy <= kMaxFocal)) {
+    fail(fmt::format("focal lengths fx {} fy {} outside [{}, {}] px", fx, fy, kMinFocal, kMaxFocal));
+  }
+  if (!(cx >= 0 && cx < width)) fail(fmt::format("cx {} outside [0, {})", cx, width));
+  if (!(cy >= 0 && cy < height)) fail(fmt::format("cy {} outside [0, {})", cy, height));
+  if (!IsPlausibleDepthFactor(depth_factor)) {
+    fail(fmt::format("depth factor {} outside [{}, {}] raw units per metre", depth_factor,
+                     kMinDepthFactor, kMaxDepthFactor));
+  }
+  if (!(bf > 0 && bf <= kMaxBf)) fail(fmt::format("bf {} outside (0, {}] px m", bf, kMaxBf));
+  for (const double k : {k1, k2, p1, p2, k3}) {
+    if (!std::isfinite(k)) fail("distortion coefficient is not finite");
+  }
+  if (!(std::abs(p1) <= kMaxTangential && std::abs(p2) <= kMaxTangential)) {
+    fail(fmt::format("tangential distortion p1 {} p2 {} beyond +-{}", p1, p2, kMaxTangential));
+  }
+  if (k1 != 0 || k2 != 0 || k3 != 0) {
+    if (const std::string problem = RadialDistortionProblem(*this); !problem.empty()) {
+      fail(fmt::format("radial distortion k1 {} k2 {} k3 {} {}", k1, k2, k3, problem));
+    }
+  }
 }
 
 CameraIntrinsics CameraPreset(const std::string& name) {

@@ -9,6 +9,17 @@
 
 namespace dlslam {
 
+// Ranges that CameraIntrinsics::Check() accepts: wide enough for any RGB-D
+// camera, narrow enough that a typo or an overflowed number is refused.
+inline constexpr int kMaxImageSide = 20000;             // [px]
+inline constexpr double kMinFocal = 1.0, kMaxFocal = 1e6;  // [px]
+inline constexpr double kMaxTangential = 0.1;           // |p1|, |p2|
+inline constexpr double kMaxBf = 1e5;                   // [px m]
+// Raw depth per metre: 1 for float metres, 1000 for millimetres, 5000 for TUM;
+// 1e-300 or 1e300 (a typo, an overflow) would give inf or zero depth.
+inline constexpr double kMinDepthFactor = 1e-2, kMaxDepthFactor = 1e5;
+inline bool IsPlausibleDepthFactor(double f) { return f >= kMinDepthFactor && f <= kMaxDepthFactor; }
+
 struct CameraIntrinsics {
   std::string name;  // e.g. "freiburg3", "bonn", "settings:my_cam.yaml"
   int width = 640;   // image size [px]
@@ -37,7 +48,10 @@ struct CameraIntrinsics {
   // Applies the distortion model to a normalised image point (x/z, y/z).
   Eigen::Vector2d Distort(const Eigen::Vector2d& xn) const;
 
-  // Throws dlslam::Error naming the offending value.
+  // Throws dlslam::Error naming the offending value: sizes, focal lengths and
+  // depth factor outside the ranges above, a principal point outside the
+  // image, or a distortion that is not a lens (not monotonic out to the image
+  // corners, or scaling a radius more than 4x).
   void Check() const;
 };
 

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+
 #include "dlslam/util/check.h"
 
 namespace dlslam {
@@ -50,6 +53,34 @@ TEST(Camera, CheckRejectsNonsense) {
   c = CameraIntrinsics();
   c.depth_factor = 0;
   EXPECT_THROW(c.Check(), Error);
+}
+
+TEST(Camera, CheckAcceptsEveryRealLensAndRefusesAbsurdOnes) {
+  for (const char* preset : {"fr1", "fr2", "fr3", "bonn"}) {
+    EXPECT_NO_THROW(CameraPreset(preset).Check()) << preset;
+  }
+  const auto refused = [](auto change) {
+    CameraIntrinsics c = CameraPreset("bonn");
+    change(c);
+    try {
+      c.Check();
+    } catch (const Error& e) {
+      // A user-facing sentence, not an internal check with a source path.
+      return std::string(e.what()).find("check failed") == std::string::npos;
+    }
+    return false;
+  };
+  EXPECT_TRUE(refused([](CameraIntrinsics& c) { c.k1 = 1e10; }));   // magnifies the corners
+  EXPECT_TRUE(refused([](CameraIntrinsics& c) { c.k1 = -5; }));     // folds back
+  EXPECT_TRUE(refused([](CameraIntrinsics& c) { c.k3 = -1e6; }));
+  EXPECT_TRUE(refused([](CameraIntrinsics& c) { c.p1 = 3; }));
+  EXPECT_TRUE(refused([](CameraIntrinsics& c) { c.k2 = std::nan(""); }));
+  EXPECT_TRUE(refused([](CameraIntrinsics& c) { c.depth_factor = 1e-300; }));
+  EXPECT_TRUE(refused([](CameraIntrinsics& c) { c.depth_factor = 1e300; }));
+  EXPECT_TRUE(refused([](CameraIntrinsics& c) { c.fx = 4294967831.0; }));
+  EXPECT_TRUE(refused([](CameraIntrinsics& c) { c.width = 1 << 30; }));
+  EXPECT_FALSE(refused([](CameraIntrinsics& c) { c.k1 = -0.3; c.k2 = 0.1; }));  // strong barrel
+  EXPECT_FALSE(refused([](CameraIntrinsics& c) { c.depth_factor = 1000; }));
 }
 
 TEST(Camera, DistortionOfCentreIsIdentityAndMatchesFormula) {

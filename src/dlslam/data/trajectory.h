@@ -12,6 +12,12 @@
 
 namespace dlslam {
 
+// Bounds of a plausible trajectory: a million kilometres, 30,000 years. The
+// readers refuse values beyond them, so that the evaluation's differences and
+// squares stay finite.
+inline constexpr double kMaxCoordinate = 1e9;  // [m]
+inline constexpr double kMaxTimestamp = 1e12;  // [s]
+
 struct StampedPose {
   double timestamp = 0.0;                                       // [s]
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();        // [m]

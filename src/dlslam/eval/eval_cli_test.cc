@@ -119,10 +119,13 @@ TEST_F(EvalCliTest, BadInputExitsNonZeroNamingTheProblem) {
   EXPECT_NE(run.exit_code, 0);
   run = Cli("eval rpe " + Files("spin") + " --delta -1", "2>&1");
   EXPECT_NE(run.exit_code, 0);
-  EXPECT_THAT(run.output, HasSubstr("delta must be > 0"));
+  EXPECT_THAT(run.output, HasSubstr("--delta: expected a number in [1e-09, 1000000000], got '-1'"));
+  run = Cli("eval rpe " + Files("spin") + " --delta 0.5 --delta-unit f", "2>&1");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("must be at least 1"));
   run = Cli("eval ate " + Files("spin") + " --max-diff 0", "2>&1");
   EXPECT_NE(run.exit_code, 0);
-  EXPECT_THAT(run.output, HasSubstr("max_diff must be > 0"));
+  EXPECT_THAT(run.output, HasSubstr("--max-diff: expected a number in [1e-09, 1000], got '0'"));
 }
 
 }  // namespace

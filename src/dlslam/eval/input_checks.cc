@@ -18,6 +18,10 @@ void CheckEvaluable(const Trajectory& trajectory, std::string_view what) {
       throw Error(fmt::format("the {} pose [{}] at {:.6f} has a non-finite value or zero quaternion",
                               what, i, p.timestamp));
     }
+    if (!(std::abs(p.timestamp) <= kMaxTimestamp) || !(p.translation.lpNorm<Eigen::Infinity>() <= kMaxCoordinate)) {
+      throw Error(fmt::format("the {} pose [{}] has a timestamp beyond +-{:g} s or a coordinate beyond +-{:g} m",
+                              what, i, kMaxTimestamp, kMaxCoordinate));
+    }
     if (i > 0 && !(p.timestamp > trajectory[i - 1].timestamp)) {
       throw Error(fmt::format("the {} timestamps must increase: pose [{}] at {:.6f} follows {:.6f}",
                               what, i, p.timestamp, trajectory[i - 1].timestamp));

@@ -36,6 +36,12 @@ void RpeOptions::Check() const {
   const int unit = static_cast<int>(delta_unit);
   DLSLAM_CHECK(unit >= 0 && unit <= static_cast<int>(DeltaUnit::kFrames),
                "delta unit {} is not one of s, m, rad, deg, f", unit);
+  // Below one frame the closest index to i + delta is often i itself: pairs
+  // of a pose with itself, an RPE of zero that means nothing. (Fractions
+  // above 1 are fine: the TUM tool takes the closest index, as we do.)
+  if (delta_unit == DeltaUnit::kFrames && !(delta >= 1.0)) {
+    throw Error(fmt::format("RPE delta {} in frames (--delta-unit f) must be at least 1", delta));
+  }
   DLSLAM_CHECK(std::isfinite(offset), "offset must be finite, got {}", offset);
   DLSLAM_CHECK(std::isfinite(scale) && scale > 0.0, "scale must be > 0, got {}", scale);
 }

@@ -134,6 +134,7 @@ TEST(RpeTest, RefusesBadInput) {
   EXPECT_THAT(ErrorOf(gt, est, {.delta = 0.0}), HasSubstr("delta must be > 0"));
   EXPECT_THAT(ErrorOf(gt, est, {.scale = 0.0}), HasSubstr("scale must be > 0"));
   EXPECT_THAT(ErrorOf(gt, est, {.delta = 100.0}), HasSubstr("only 0 pose pair(s)"));
+  EXPECT_THAT(ErrorOf(gt, est, {.delta = 0.5, .delta_unit = DeltaUnit::kFrames}), HasSubstr("must be at least 1"));
   EXPECT_THROW(ParseDeltaUnit("mm"), Error);
   EXPECT_EQ(ParseDeltaUnit("deg"), DeltaUnit::kDegrees);
   EXPECT_EQ(ToString(ParseDeltaUnit("rad")), "rad");

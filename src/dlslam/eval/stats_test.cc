@@ -43,6 +43,17 @@ TEST(ErrorStatsTest, SmallSpreadOnLargeValuesKeepsItsStd) {
   EXPECT_DOUBLE_EQ(ComputeErrorStats(e).std, 1.0);
 }
 
+TEST(ErrorStatsTest, HugeErrorsDoNotOverflow) {
+  const std::vector<double> e = {3e200, 4e200, 3e200, 4e200};
+  const ErrorStats s = ComputeErrorStats(e);
+  EXPECT_DOUBLE_EQ(s.rmse, std::sqrt(12.5) * 1e200);
+  EXPECT_DOUBLE_EQ(s.mean, 3.5e200);
+  EXPECT_DOUBLE_EQ(s.std, 0.5e200);
+  EXPECT_DOUBLE_EQ(s.median, 3.5e200);
+  const std::vector<double> zeros = {0.0, 0.0};
+  EXPECT_EQ(ComputeErrorStats(zeros).rmse, 0.0);
+}
+
 TEST(ErrorStatsTest, EmptyThrows) {
   EXPECT_THROW(ComputeErrorStats(std::vector<double>{}), Error);
   EXPECT_THROW(Median(std::vector<double>{}), Error);

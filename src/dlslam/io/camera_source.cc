@@ -131,6 +131,17 @@ CameraChoice ResolveCamera(const std::filesystem::path& folder, const CameraHint
     choice.depth_factor_source = "default (TUM / Bonn: 5000 per metre)";
   }
 
+  // Named by source before the camera as a whole is checked: 1e-300 or 1e300
+  // gives inf or zero depth everywhere and a run that tracks nothing.
+  const double factor = choice.camera.depth_factor;
+  if (!IsPlausibleDepthFactor(factor)) {
+    const std::string range = fmt::format("outside [{}, {}] raw units per metre", kMinDepthFactor, kMaxDepthFactor);
+    if (choice.depth_factor_source == "--depth-factor") {
+      throw InputError(folder, 0, "--depth-factor {} {}", factor, range);
+    }
+    throw InputError(hints.depth_list, 0, "depth factor {} of its 'depth factor' comment {}", factor, range);
+  }
+
   try {
     choice.camera.Check();
   } catch (const Error& e) {

@@ -1,6 +1,7 @@
 #pragma once
 // Small file helpers shared by the writers.
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <ostream>
@@ -16,9 +17,15 @@ namespace dlslam::io {
 void WriteFileAtomically(const std::filesystem::path& path,
                          const std::function<void(std::ostream&)>& write);
 
-// The whole file in one read. Throws InputError (line 0) when it is missing,
-// not a regular file or unreadable.
-std::string ReadFileBytes(const std::filesystem::path& path);
+// Size of `path` after checking that it can be read as a file: InputError
+// (line 0) when it is missing, a folder, a device, FIFO or socket (read
+// without end), a symlink loop or an unusable name, or over `max_bytes`.
+// `what` names the kind of file in the message ("settings file").
+std::uintmax_t CheckReadableFile(const std::filesystem::path& path, std::uintmax_t max_bytes,
+                                 std::string_view what = "file");
+
+// The whole file in one read, after CheckReadableFile(path, max_bytes).
+std::string ReadFileBytes(const std::filesystem::path& path, std::uintmax_t max_bytes = 1ull << 30);
 
 // Regular files under `root` (recursively, following no symlinked folders)
 // whose extension is one of `extensions` (with the dot, compared without

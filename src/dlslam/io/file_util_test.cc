@@ -43,7 +43,15 @@ TEST(ReadFileBytes, MissingFileOrFolderIsAnInputErrorNamingThePath) {
   const auto dir = dlslam::testing::MakeTempDir("read_bytes_bad");
   EXPECT_THAT(ErrorOf([&] { ReadFileBytes(dir / "nope.bin"); }),
               ::testing::AllOf(HasSubstr("nope.bin"), HasSubstr("not found")));
-  EXPECT_THAT(ErrorOf([&] { ReadFileBytes(dir); }), HasSubstr("not a regular file"));
+  EXPECT_THAT(ErrorOf([&] { ReadFileBytes(dir); }), HasSubstr("a folder"));
+  EXPECT_THAT(ErrorOf([&] { ReadFileBytes("/dev/zero"); }), HasSubstr("not a regular file"));
+  std::filesystem::create_symlink(dir / "loop_a", dir / "loop_b");
+  std::filesystem::create_symlink(dir / "loop_b", dir / "loop_a");
+  EXPECT_THAT(ErrorOf([&] { ReadFileBytes(dir / "loop_a"); }),
+              ::testing::AllOf(HasSubstr("loop_a"), HasSubstr("symbolic links")));
+  EXPECT_THAT(ErrorOf([&] { ReadFileBytes(dir / std::string(300, 'n')); }), HasSubstr("too long"));
+  std::ofstream(dir / "big.bin") << std::string(2000, 'x');
+  EXPECT_THAT(ErrorOf([&] { ReadFileBytes(dir / "big.bin", 1024); }), HasSubstr("2000 bytes, more than the 1 KB"));
   std::filesystem::remove_all(dir);
 }
 

@@ -13,7 +13,7 @@ namespace {
 
 [[noreturn]] void Fail(const ImageSource& source, const char* kind, const std::string& problem) {
   throw InputError(source.list_file.empty() ? source.image : source.list_file, source.line,
-                   "{} image '{}': {}", kind, source.image.string(), problem);
+                   "{} image '{}': {}", kind, ShortPath(source.image), problem);
 }
 
 // Larger than any RGB-D frame (a 4K 16-bit PNG stored raw is ~50 MB).

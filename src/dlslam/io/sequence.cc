@@ -25,7 +25,9 @@ ImageList ReadRequiredList(const std::filesystem::path& folder, const char* name
                      "file not found: a TUM-layout sequence folder needs rgb.txt and depth.txt "
                      "(or pass an association file)");
   }
-  return ReadImageList(path);
+  ImageList list = ReadImageList(path);
+  if (list.images.empty()) throw InputError(path, 0, "lists no images");
+  return list;
 }
 
 }  // namespace

@@ -1,8 +1,11 @@
 #include "dlslam/io/settings.h"
 
+#include <yaml-cpp/depthguard.h>
+#include <yaml-cpp/yaml.h>
+
+#include <charconv>
 #include <cmath>
-#include <fstream>
-#include <opencv2/core.hpp>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -12,68 +15,62 @@
 namespace dlslam::io {
 namespace {
 
-// Line of "key:" in the file, for messages (FileStorage does not keep lines).
-int LineOfKey(const std::filesystem::path& path, const std::string& key) {
-  std::ifstream in(path);
-  std::string text;
-  for (int line = 1; std::getline(in, text); ++line) {
-    const auto first = text.find_first_not_of(" \t");
-    if (first != std::string::npos && text.compare(first, key.size() + 1, key + ":") == 0) {
-      return line;
-    }
-  }
-  return 0;
-}
+constexpr std::uintmax_t kMaxSettingsBytes = 1u << 20;  // ORB-SLAM3's largest is ~10 KB
 
-std::string Describe(const cv::FileNode& node) {
-  if (node.isString()) return fmt::format("text '{}'", node.string());
-  if (node.isMap()) return "a map";
-  if (node.isSeq()) return "a list";
-  return "no value";
-}
-
+// A settings file read with yaml-cpp: it bounds the nesting depth (OpenCV's
+// parser overflows the stack on 100,000 nested '['), keeps the line of every
+// key, and lets us refuse a key given twice. ORB-SLAM3's "%YAML:1.0" first
+// line and its !!opencv-matrix tags read as they are.
 class SettingsFile {
  public:
   explicit SettingsFile(const std::filesystem::path& path) : path_(path) {
-    if (!std::filesystem::exists(path)) throw InputError(path, 0, "settings file not found");
-    if (std::filesystem::is_directory(path)) throw InputError(path, 0, "is a directory");
-    if (std::filesystem::file_size(path) == 0) throw InputError(path, 0, "empty settings file");
-    try {
-      storage_.open(path.string(), cv::FileStorage::READ | cv::FileStorage::FORMAT_YAML);
-    } catch (const cv::Exception& e) {
-      // OpenCV 4.6's parser puts "<file>(<line>): <problem>" in e.func and
-      // its own function name in e.err; other failures only have e.err.
-      int line = 0;
-      std::string problem = e.err;
-      const std::string& where = e.func;
-      const auto close = where.find("): ");
-      const auto open = close == std::string::npos ? close : where.rfind('(', close);
-      if (open != std::string::npos && close > open + 1 &&
-          where.find_first_not_of("0123456789", open + 1) == close) {
-        line = std::stoi(where.substr(open + 1, close - open - 1));
-        problem = where.substr(close + 3);
-      }
-      throw InputError(path, line, "malformed settings file (OpenCV YAML, '%YAML:1.0' first): {}",
-                       problem);
+    if (CheckReadableFile(path, kMaxSettingsBytes, "settings file") == 0) {
+      throw InputError(path, 0, "empty settings file");
     }
-    if (!storage_.isOpened()) {
-      throw InputError(path, 0, "cannot read as an OpenCV YAML settings file");
+    YAML::Node root;
+    try {
+      root = YAML::Load(ReadFileBytes(path, kMaxSettingsBytes));
+    } catch (const YAML::DeepRecursion& e) {
+      throw InputError(path, e.mark.is_null() ? 0 : e.mark.line + 1,
+                       "malformed YAML: lists or maps nested deeper than {} levels", e.depth());
+    } catch (const YAML::Exception& e) {
+      throw InputError(path, e.mark.is_null() ? 0 : e.mark.line + 1, "malformed YAML: {}", e.msg);
+    }
+    if (root.IsNull()) throw InputError(path, 0, "no settings in the file (only comments?)");
+    if (!root.IsMap()) {
+      throw InputError(path, Line(root), "the top level must be 'key: value' lines, got {}",
+                       Describe(root));
+    }
+    for (const auto& entry : root) {
+      if (!entry.first.IsScalar()) {
+        throw InputError(path, Line(entry.first), "a key must be a name, got {}", Describe(entry.first));
+      }
+      const std::string& key = entry.first.Scalar();
+      const auto [it, added] = keys_.emplace(key, Entry{entry.second, Line(entry.first)});
+      if (!added) {
+        throw InputError(path, Line(entry.first), "key {} given twice (first on line {})", Quoted(key),
+                         it->second.line);
+      }
     }
   }
 
-  bool Has(const std::string& key) const { return !storage_[key].isNone(); }
+  bool Has(const std::string& key) const { return keys_.count(key) > 0; }
 
   std::optional<double> Number(const std::string& key) const {
-    const cv::FileNode node = storage_[key];
-    if (node.isNone()) return std::nullopt;
-    if (!node.isInt() && !node.isReal()) {
-      throw InputError(path_, LineOfKey(path_, key), "key '{}': expected a number, got {}", key,
-                       Describe(node));
+    const auto it = keys_.find(key);
+    if (it == keys_.end()) return std::nullopt;
+    const YAML::Node& node = it->second.value;
+    if (!node.IsScalar()) Fail(key, fmt::format("expected a number, got {}", Describe(node)));
+    // The whole token as a double: no 32-bit wrap-around (4294967936 stays
+    // itself and is refused as an image size), no trailing garbage.
+    std::string text = node.Scalar();
+    if (!text.empty() && text.front() == '+') text.erase(0, 1);
+    double value = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+      Fail(key, fmt::format("expected a number, got {}", Describe(node)));
     }
-    const double value = node.isInt() ? static_cast<double>(static_cast<int>(node)) : node.real();
-    if (!std::isfinite(value)) {
-      throw InputError(path_, LineOfKey(path_, key), "key '{}': {} is not finite", key, value);
-    }
+    if (!std::isfinite(value)) Fail(key, fmt::format("{} is not finite", Quoted(node.Scalar())));
     return value;
   }
 
@@ -82,33 +79,64 @@ class SettingsFile {
     throw InputError(path_, 0, "missing required key '{}'", key);
   }
 
-  std::optional<double> Positive(const std::string& key) const {
+  // Number(key) within [low, high] when given.
+  std::optional<double> InRange(const std::string& key, double low, double high,
+                                std::string_view unit = "") const {
     const auto value = Number(key);
-    if (value && !(*value > 0)) {
-      throw InputError(path_, LineOfKey(path_, key), "key '{}': {} must be positive", key, *value);
+    if (value && !(*value >= low && *value <= high)) {
+      Fail(key, fmt::format("{} outside [{}, {}]{}{}", *value, low, high, unit.empty() ? "" : " ", unit));
+    }
+    return value;
+  }
+
+  std::optional<double> Positive(const std::string& key, double high, std::string_view unit = "") const {
+    const auto value = Number(key);
+    if (value && !(*value > 0 && *value <= high)) {
+      Fail(key, fmt::format("{} outside (0, {}]{}{}", *value, high, unit.empty() ? "" : " ", unit));
     }
     return value;
   }
 
   int Size(const std::string& key) const {
-    const double value = *Positive(key);
-    if (value != std::floor(value) || value > 1e6) {
-      throw InputError(path_, LineOfKey(path_, key), "key '{}': {} is not an image size", key,
-                       value);
+    const double value = *Number(key);
+    if (value != std::floor(value) || !(value >= 1 && value <= kMaxImageSide)) {
+      Fail(key, fmt::format("{} is not an image size (a whole number of pixels, 1..{})", value,
+                            kMaxImageSide));
     }
     return static_cast<int>(value);
   }
 
   std::string String(const std::string& key) const {
-    const cv::FileNode node = storage_[key];
-    if (node.isString()) return node.string();
-    if (node.isReal() || node.isInt()) return fmt::format("{}", node.real());
-    return {};
+    const auto it = keys_.find(key);
+    return it != keys_.end() && it->second.value.IsScalar() ? it->second.value.Scalar() : std::string();
+  }
+
+  int LineOf(const std::string& key) const {
+    const auto it = keys_.find(key);
+    return it == keys_.end() ? 0 : it->second.line;
+  }
+
+  [[noreturn]] void Fail(const std::string& key, const std::string& what) const {
+    throw InputError(path_, LineOf(key), "key '{}': {}", key, what);
   }
 
  private:
+  struct Entry {
+    YAML::Node value;
+    int line;
+  };
+
+  static int Line(const YAML::Node& node) { return node.Mark().is_null() ? 0 : node.Mark().line + 1; }
+
+  static std::string Describe(const YAML::Node& node) {
+    if (node.IsScalar()) return "text " + Quoted(node.Scalar());
+    if (node.IsMap()) return "a map";
+    if (node.IsSequence()) return "a list";
+    return "no value";
+  }
+
   std::filesystem::path path_;
-  cv::FileStorage storage_;
+  std::map<std::string, Entry> keys_;
 };
 
 // Shortest text that reads back to the same double, with a decimal point.
@@ -124,14 +152,12 @@ CameraSettings ReadSettingsFile(const std::filesystem::path& path) {
   const SettingsFile file(path);
   const std::string version = file.String("File.version");
   if (file.Has("File.version") && version != "1.0" && version != "1") {
-    throw InputError(path, LineOfKey(path, "File.version"),
-                     "unsupported File.version '{}' (expected \"1.0\" or none)", version);
+    file.Fail("File.version", fmt::format("unsupported version {} (expected \"1.0\" or none)",
+                                          Quoted(version)));
   }
   const bool v1 = file.Has("File.version");
   if (file.Has("Camera.type") && file.String("Camera.type") != "PinHole") {
-    throw InputError(path, LineOfKey(path, "Camera.type"),
-                     "Camera.type '{}' is not supported (only PinHole)",
-                     file.String("Camera.type"));
+    file.Fail("Camera.type", fmt::format("{} is not supported (only PinHole)", Quoted(file.String("Camera.type"))));
   }
   const std::string cam = v1 ? "Camera1." : "Camera.";
 
@@ -142,8 +168,10 @@ CameraSettings ReadSettingsFile(const std::filesystem::path& path) {
   c.fy = file.Required(cam + "fy");
   c.cx = file.Required(cam + "cx");
   c.cy = file.Required(cam + "cy");
-  file.Positive(cam + "fx");
-  file.Positive(cam + "fy");
+  file.InRange(cam + "fx", kMinFocal, kMaxFocal, "px");
+  file.InRange(cam + "fy", kMinFocal, kMaxFocal, "px");
+  file.InRange(cam + "cx", 0, kMaxImageSide, "px");
+  file.InRange(cam + "cy", 0, kMaxImageSide, "px");
   c.k1 = file.Required(cam + "k1");
   c.k2 = file.Required(cam + "k2");
   c.p1 = file.Required(cam + "p1");
@@ -152,26 +180,29 @@ CameraSettings ReadSettingsFile(const std::filesystem::path& path) {
 
   settings.has_image_size = file.Has("Camera.width") || file.Has("Camera.height");
   if (settings.has_image_size) {
-    c.width = file.Has("Camera.width") ? file.Size("Camera.width") : 0;
-    c.height = file.Has("Camera.height") ? file.Size("Camera.height") : 0;
-    if (c.width == 0) throw InputError(path, 0, "missing required key 'Camera.width'");
-    if (c.height == 0) throw InputError(path, 0, "missing required key 'Camera.height'");
+    if (!file.Has("Camera.width")) throw InputError(path, 0, "missing required key 'Camera.width'");
+    if (!file.Has("Camera.height")) throw InputError(path, 0, "missing required key 'Camera.height'");
+    c.width = file.Size("Camera.width");
+    c.height = file.Size("Camera.height");
   } else {
     c.width = c.height = 0;
   }
-  settings.fps = file.Positive("Camera.fps").value_or(30.0);
-  if (auto bf = file.Positive("Camera.bf")) {
+  settings.fps = file.Positive("Camera.fps", 1000, "Hz").value_or(30.0);
+  if (auto bf = file.Positive("Camera.bf", kMaxBf, "px m")) {
     c.bf = *bf;
-  } else if (auto baseline = file.Positive("Stereo.b")) {
+  } else if (auto baseline = file.Positive("Stereo.b", 10, "m")) {
     c.bf = *baseline * c.fx;
   }
-  settings.th_depth = file.Positive(file.Has("Stereo.ThDepth") ? "Stereo.ThDepth" : "ThDepth")
-                          .value_or(settings.th_depth);
-  const auto depth_factor =
-      file.Positive(file.Has("RGBD.DepthMapFactor") ? "RGBD.DepthMapFactor" : "DepthMapFactor");
+  const std::string th_depth = file.Has("Stereo.ThDepth") ? "Stereo.ThDepth" : "ThDepth";
+  settings.th_depth = file.Positive(th_depth, 1e4).value_or(settings.th_depth);
+  const std::string factor_key = file.Has("RGBD.DepthMapFactor") ? "RGBD.DepthMapFactor" : "DepthMapFactor";
+  const auto depth_factor = file.InRange(factor_key, kMinDepthFactor, kMaxDepthFactor, "raw units per metre");
   settings.has_depth_factor = depth_factor.has_value();
   if (depth_factor) c.depth_factor = *depth_factor;
 
+  // The whole camera (distortion against the image corners, the principal
+  // point inside the image) once the size is known; otherwise the caller
+  // checks it when the first image gives the size.
   if (settings.has_image_size) {
     try {
       c.Check();

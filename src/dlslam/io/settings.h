@@ -1,6 +1,7 @@
 #pragma once
-// Camera settings files in the ORB-SLAM3 YAML layouts (OpenCV FileStorage,
-// "%YAML:1.0" first line), so that one file describes a camera for both.
+// Camera settings files in the ORB-SLAM3 YAML layouts (OpenCV FileStorage's
+// YAML, "%YAML:1.0" first line), so that one file describes a camera for both.
+// Read with yaml-cpp: bounded nesting, keys with their lines, no key twice.
 //
 // Old layout (ORB-SLAM2, ORB-SLAM3 before v1.0):
 //   Camera.fx Camera.fy Camera.cx Camera.cy      required
@@ -28,10 +29,12 @@ struct CameraSettings {
   double th_depth = 40.0;  // close/far depth threshold in baselines (ORB-SLAM ThDepth)
 };
 
-// Throws InputError naming the file (and the key) for: a missing or malformed
-// file, a missing required key, a value that is not a number, a
-// non-positive focal length / size / depth factor, an unsupported
-// Camera.type. camera.name is "settings:<file name>".
+// Throws InputError naming the file (and the key's line) for: a missing,
+// special (device, FIFO), over-1-MB or malformed file, a top level that is
+// not a map, a key given twice, a missing required key, a value that is not
+// wholly a finite number, a focal length / size / fps / depth factor out of
+// range (camera.h), a camera that fails CameraIntrinsics::Check(), an
+// unsupported Camera.type. camera.name is "settings:<file name>".
 CameraSettings ReadSettingsFile(const std::filesystem::path& path);
 
 // ReadSettingsFile(path).camera.

@@ -13,6 +13,7 @@
 namespace dlslam::io {
 namespace {
 
+using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 constexpr const char* kOldLayout = R"(%YAML:1.0
@@ -184,9 +185,9 @@ TEST_F(SettingsTest, NonNumericValueNamesKeyAndLine) {
 
 TEST_F(SettingsTest, ImplausibleValuesAreRejected) {
   EXPECT_THAT(ErrorOf(WriteOldLayoutWith("Camera.fx", "Camera.fx: -517.3")),
-              HasSubstr("'Camera.fx': -517.3 must be positive"));
+              HasSubstr("'Camera.fx': -517.3 outside [1, 1000000] px"));
   EXPECT_THAT(ErrorOf(WriteOldLayoutWith("DepthMapFactor", "DepthMapFactor: 0.0")),
-              HasSubstr("'DepthMapFactor': 0 must be positive"));
+              HasSubstr("'DepthMapFactor': 0 outside [0.01, 100000] raw units per metre"));
   EXPECT_THAT(ErrorOf(WriteOldLayoutWith("Camera.width", "Camera.width: 64.5")),
               HasSubstr("is not an image size"));
   EXPECT_THAT(ErrorOf(WriteOldLayoutWith("Camera.cx", "Camera.cx: 700.0")),
@@ -196,15 +197,60 @@ TEST_F(SettingsTest, ImplausibleValuesAreRejected) {
 }
 
 TEST_F(SettingsTest, MalformedFilesAreInputErrors) {
-  EXPECT_THAT(ErrorOf(dir_ / "none.yaml"), HasSubstr("settings file not found"));
+  EXPECT_THAT(ErrorOf(dir_ / "none.yaml"), HasSubstr("none.yaml: file not found"));
   EXPECT_THAT(ErrorOf(Write("empty.yaml", "")), HasSubstr("empty settings file"));
   const std::string broken =
       ErrorOf(Write("broken.yaml", "%YAML:1.0\nCamera.fx: [535.4\nCamera.fy: {\n"));
   // The list opened on line 2 is still open when line 3 starts a new key.
   EXPECT_THAT(broken, HasSubstr("broken.yaml:3:"));
-  EXPECT_THAT(broken, HasSubstr("malformed settings file"));
+  EXPECT_THAT(broken, HasSubstr("malformed YAML"));
   const std::string text = ErrorOf(Write("text.yaml", "just some text\nnot yaml: [\n"));
   EXPECT_THAT(text, HasSubstr("text.yaml"));
+}
+
+TEST_F(SettingsTest, DeepNestingIsRefusedWithoutOverflowingTheStack) {
+  // OpenCV's parser recursed once per '[' and crashed with SIGSEGV.
+  for (const std::string& open : {std::string("["), std::string("{a: "), std::string("- ")}) {
+    std::string deep = "%YAML:1.0\nCamera.fx: ";
+    for (int i = 0; i < 100000; ++i) deep += open;
+    EXPECT_THAT(ErrorOf(Write("deep.yaml", deep)), HasSubstr("deep.yaml")) << open;
+  }
+}
+
+TEST_F(SettingsTest, NumbersAreReadWholeWithoutWrapAround) {
+  // 4294967936 = 2^32 + 640 read as 640 through a 32-bit int.
+  EXPECT_THAT(ErrorOf(WriteOldLayoutWith("Camera.width", "Camera.width: 4294967936")),
+              HasSubstr("edited.yaml:14: key 'Camera.width': 4294967936 is not an image size"));
+  EXPECT_THAT(ErrorOf(WriteOldLayoutWith("Camera.fx", "Camera.fx: 4294967831")),
+              HasSubstr("key 'Camera.fx': 4294967831 outside [1, 1000000] px"));
+  EXPECT_THAT(ErrorOf(WriteOldLayoutWith("Camera.fx", "Camera.fx: 517.3abc")),
+              HasSubstr("expected a number, got text '517.3abc'"));
+  EXPECT_THAT(ErrorOf(WriteOldLayoutWith("Camera.fx", "Camera.fx: .inf")), HasSubstr("expected a number"));
+  EXPECT_THAT(ErrorOf(WriteOldLayoutWith("Camera.fx", "Camera.fx: 1e400")), HasSubstr("expected a number"));
+  EXPECT_THAT(ErrorOf(WriteOldLayoutWith("DepthMapFactor", "DepthMapFactor: 1e-300")),
+              HasSubstr("key 'DepthMapFactor': 1e-300 outside [0.01, 100000]"));
+  EXPECT_THAT(ErrorOf(WriteOldLayoutWith("DepthMapFactor", "DepthMapFactor: 1e300")),
+              HasSubstr("key 'DepthMapFactor': 1e+300 outside"));
+  EXPECT_THAT(ErrorOf(WriteOldLayoutWith("Camera.k1", "Camera.k1: 1e10")),
+              AllOf(HasSubstr("inconsistent camera"), HasSubstr("radial distortion")));
+  EXPECT_EQ(ReadSettingsFile(WriteOldLayoutWith("Camera.fx", "Camera.fx: +517")).camera.fx, 517.0);
+}
+
+TEST_F(SettingsTest, AKeyGivenTwiceOrAListAtTheTopIsRefused) {
+  EXPECT_THAT(ErrorOf(Write("twice.yaml", std::string(kOldLayout) + "Camera.fx: 600.0\n")),
+              HasSubstr("twice.yaml:21: key 'Camera.fx' given twice (first on line 3)"));
+  EXPECT_THAT(ErrorOf(Write("list.yaml", "%YAML:1.0\n- 1\n- 2\n")),
+              HasSubstr("list.yaml:2: the top level must be 'key: value' lines, got a list"));
+  EXPECT_THAT(ErrorOf(Write("comments.yaml", "%YAML:1.0\n# nothing\n")), HasSubstr("no settings"));
+}
+
+TEST_F(SettingsTest, SpecialFilesAndLongTokensAreRefusedBriefly) {
+  EXPECT_THAT(ErrorOf("/dev/null"), HasSubstr("/dev/null: not a regular file"));
+  EXPECT_THAT(ErrorOf(Write("huge.yaml", std::string(2 << 20, '#'))), HasSubstr("more than the 1 MB"));
+  const std::string error =
+      ErrorOf(WriteOldLayoutWith("Camera.fx", "Camera.fx: " + std::string(100000, 'x')));
+  EXPECT_THAT(error, HasSubstr("(100000 characters)"));
+  EXPECT_LT(error.size(), 300u);
 }
 
 }  // namespace

@@ -6,23 +6,15 @@
 #include <fstream>
 #include <sstream>
 
+#include "dlslam/io/file_util.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam::io {
 
 TextTable ReadTextTable(const std::filesystem::path& path) {
-  if (!std::filesystem::exists(path)) throw InputError(path, 0, "file not found");
-  if (std::filesystem::is_directory(path)) throw InputError(path, 0, "is a directory, expected a file");
-  // A device or FIFO (/dev/zero) would be read without end.
-  if (!std::filesystem::is_regular_file(path)) {
-    throw InputError(path, 0, "not a regular file (a device, FIFO or socket)");
-  }
-  constexpr std::uintmax_t kMaxTextBytes = 1ull << 30;  // lists and trajectories are far smaller
-  std::error_code ec;
-  if (const std::uintmax_t size = std::filesystem::file_size(path, ec); !ec && size > kMaxTextBytes) {
-    throw InputError(path, 0, "{} bytes, more than the {} MB a list or trajectory file may have", size,
-                     kMaxTextBytes >> 20);
-  }
+  // Lists and trajectories are far smaller; a device or FIFO (/dev/zero)
+  // would be read without end.
+  CheckReadableFile(path, 1ull << 30, "list or trajectory file");
   std::ifstream in(path);
   if (!in) throw InputError(path, 0, "cannot open for reading");
   TextTable table;
@@ -58,7 +50,7 @@ double ParseDouble(std::string_view text, const std::filesystem::path& path, int
   errno = 0;
   const double value = std::strtod(s.c_str(), &end);
   if (s.empty() || end != s.c_str() + s.size() || errno == ERANGE || !std::isfinite(value)) {
-    throw InputError(path, line, "{} '{}' is not a finite number", what, s);
+    throw InputError(path, line, "{} {} is not a finite number", what, Quoted(s));
   }
   return value;
 }

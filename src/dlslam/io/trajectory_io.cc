@@ -28,14 +28,28 @@ Trajectory ReadTumTrajectory(const std::filesystem::path& path, const Trajectory
     static constexpr const char* kNames[8] = {"timestamp", "tx", "ty", "tz", "qx", "qy", "qz", "qw"};
     double v[8];
     for (int i = 0; i < 8; ++i) v[i] = ParseDouble(row.fields[i], path, row.line, kNames[i]);
+    // Beyond these, differences and squares in ATE/RPE overflow; no camera
+    // trajectory (or clock) comes near them.
+    if (!(std::abs(v[0]) <= kMaxTimestamp)) {
+      throw InputError(path, row.line, "timestamp {} beyond +-{:g} s", v[0], kMaxTimestamp);
+    }
+    for (int i = 1; i < 4; ++i) {
+      if (!(std::abs(v[i]) <= kMaxCoordinate)) {
+        throw InputError(path, row.line, "{} {} beyond +-{:g} m", kNames[i], v[i], kMaxCoordinate);
+      }
+    }
     StampedPose pose;
     pose.timestamp = v[0];
     pose.translation = Eigen::Vector3d(v[1], v[2], v[3]);
     pose.rotation = Eigen::Quaterniond(v[7], v[4], v[5], v[6]);
-    const double norm = pose.rotation.norm();
-    if (norm < 1e-9) throw InputError(path, row.line, "quaternion is zero");
+    // The norm from the components scaled by the largest: the norm of
+    // (1e308, 0, 0, 0) overflows, its direction does not.
+    const double largest = pose.rotation.coeffs().cwiseAbs().maxCoeff();
+    if (largest < 1e-9) throw InputError(path, row.line, "quaternion is zero");
+    const Eigen::Quaterniond scaled(pose.rotation.coeffs() / largest);
+    const double norm = scaled.norm() * largest;
     if (std::abs(norm - 1.0) > options.quaternion_norm_tolerance) {
-      pose.rotation.normalize();
+      pose.rotation = scaled.normalized();
       if (normalised++ == 0) first_normalised_line = row.line;
     }
     if (!trajectory.empty() && pose.timestamp == trajectory.back().timestamp) {

@@ -106,6 +106,11 @@ TEST_F(TrajectoryIoTest, BadInputNamesFileAndLine) {
   EXPECT_THAT(ErrorOf(dir_ / "missing.txt"), HasSubstr("missing.txt: file not found"));
   EXPECT_THAT(ErrorOf(Write("short.txt", "# c\n1.0 0 0 0 0 0 0 1\n2.0 0 0 0 0 0 1\n")),
               HasSubstr("short.txt:3: expected 8 values"));
+  EXPECT_THAT(ErrorOf(Write("huge.txt", "1.0 0 1e300 0 0 0 0 1\n")),
+              HasSubstr("huge.txt:1: ty 1e+300 beyond +-1e+09 m"));
+  EXPECT_THAT(ErrorOf(Write("late.txt", "1e300 0 0 0 0 0 0 1\n")), HasSubstr("late.txt:1: timestamp"));
+  EXPECT_THAT(ErrorOf(Write("long.txt", "1.0 0 0 " + std::string(100000, '7') + "x 0 0 0 1\n")),
+              HasSubstr("(100001 characters) is not a finite number"));
   EXPECT_THAT(ErrorOf(Write("nan.txt", "1.0 0 0 x 0 0 0 1\n")),
               HasSubstr("nan.txt:1: tz 'x' is not a finite number"));
   EXPECT_THAT(ErrorOf(Write("order.txt", "2.0 0 0 0 0 0 0 1\n1.0 0 0 0 0 0 0 1\n")),

@@ -2,7 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <poll.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <opencv2/core/utility.hpp>
 #include <string>
 
@@ -27,6 +34,45 @@ std::string ShapeText(const cv::Mat& blob) {
 // OpenCV's messages span lines and repeat the source path; keep the reason.
 std::string OpenCvReason(const cv::Exception& e) { return e.err.empty() ? e.what() : e.err; }
 
+// OpenCV 4.6's ONNX importer is not hardened against corrupt files: some
+// byte flips make readNetFromONNX dereference garbage (SIGSEGV) instead of
+// throwing. So the import is tried first in a forked child; a child killed
+// by a signal (or stuck past kImportTimeoutMs) means the file would crash
+// or hang us. Only the single-threaded import runs there: OpenCV's thread
+// pool, if the parent started one, does not exist in the child.
+// Returns "" when the import ends normally (succeeding or throwing).
+std::string ImportCrashReason(std::string_view model_bytes) {
+  constexpr int kImportTimeoutMs = 60000;
+  const pid_t child = fork();
+  if (child < 0) return {};  // cannot probe (no processes left): import as before
+  if (child == 0) {
+    try {
+      cv::dnn::readNetFromONNX(model_bytes.data(), model_bytes.size());
+    } catch (...) {
+    }
+    _exit(0);
+  }
+  const int pidfd = static_cast<int>(syscall(SYS_pidfd_open, child, 0));
+  bool ended = true;
+  if (pidfd >= 0) {
+    pollfd wait{pidfd, POLLIN, 0};
+    ended = poll(&wait, 1, kImportTimeoutMs) > 0;
+    close(pidfd);
+  }
+  if (!ended) kill(child, SIGKILL);
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!ended) return fmt::format("OpenCV's ONNX importer did not finish within {} s", kImportTimeoutMs / 1000);
+  if (WIFSIGNALED(status)) {
+    return fmt::format("OpenCV's ONNX importer crashes on it (signal {})", WTERMSIG(status));
+  }
+  // The child ends with _exit(0); anything else is a crash that a sanitizer
+  // or a handler turned into an exit status.
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return "OpenCV's ONNX importer crashes on it";
+  return {};
+}
+
 }  // namespace
 
 OnnxSegmenter::OnnxSegmenter(const SegmenterOptions& options)
@@ -42,6 +88,9 @@ OnnxSegmenter::OnnxSegmenter(std::string_view model_bytes, const std::filesystem
 
 void OnnxSegmenter::Load(std::string_view model_bytes) {
   if (model_bytes.empty()) throw InputError(model_name_, 0, "segmentation model file is empty (0 bytes)");
+  if (const std::string reason = ImportCrashReason(model_bytes); !reason.empty()) {
+    throw InputError(model_name_, 0, "not a loadable ONNX model (corrupt or truncated?): {}", reason);
+  }
   try {
     net_ = cv::dnn::readNetFromONNX(reinterpret_cast<const char*>(model_bytes.data()), model_bytes.size());
   } catch (const cv::Exception& e) {

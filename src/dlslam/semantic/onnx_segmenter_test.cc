@@ -136,7 +136,7 @@ class BadModelTest : public ::testing::Test {
 TEST_F(BadModelTest, MissingOrEmptyFile) {
   EXPECT_THAT(LoadError(dir_ / "nothing.onnx"), HasSubstr("not found"));
   EXPECT_THAT(LoadError(Write("empty.onnx", "")), HasSubstr("empty"));
-  EXPECT_THAT(LoadError(dir_), HasSubstr("directory"));
+  EXPECT_THAT(LoadError(dir_), HasSubstr("a folder"));
 }
 
 TEST_F(BadModelTest, TruncatedOrGarbageFile) {

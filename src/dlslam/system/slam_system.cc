@@ -16,7 +16,14 @@ std::unique_ptr<place::KeyFrameIndex> MakeKeyFrameIndex(const SystemOptions& opt
   auto vocabulary = std::make_shared<const place::Vocabulary>(place::LoadVocabulary(file));
   spdlog::debug("vocabulary {}: {} words, loaded in {:.1f} ms", file.string(), vocabulary->word_count(),
                 watch.ElapsedMs());
-  return std::make_unique<place::KeyFrameIndex>(std::move(vocabulary));
+  // The direct index groups features by their node two levels below the
+  // root; a vocabulary with one level (vocab train --levels 1) cannot.
+  constexpr int kDirectIndexLevel = 2;
+  if (vocabulary->levels() < kDirectIndexLevel) {
+    throw InputError(file, 0, "vocabulary has {} level(s); relocalization and loop closing need at least {} "
+                     "(vocab train --levels)", vocabulary->levels(), kDirectIndexLevel);
+  }
+  return std::make_unique<place::KeyFrameIndex>(std::move(vocabulary), kDirectIndexLevel);
 }
 
 }  // namespace

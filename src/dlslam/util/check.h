@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 
 namespace dlslam {
@@ -40,6 +41,14 @@ class InputError : public Error {
   std::filesystem::path file_;
   int line_;
 };
+
+// A path as named in a message: one longer than ~220 characters is cut in
+// the middle, with its length.
+std::string ShortPath(const std::filesystem::path& file);
+
+// `text` in single quotes, cut to `max_chars` with its length: a message may
+// echo a user's token, and a 100 KB token must not become a 100 KB line.
+std::string Quoted(std::string_view text, std::size_t max_chars = 60);
 
 namespace internal {
 
