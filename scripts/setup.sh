@@ -1,20 +1,32 @@
 #!/usr/bin/env bash
 # Installs what DLSLAM needs from Debian 12 packages and builds it (Release)
 # into build/. Idempotent and non-interactive: run it again after a pull.
-#   scripts/setup.sh                 # packages + build
+#   scripts/setup.sh                 # packages + build (the SLAM: no PyTorch)
+#   scripts/setup.sh --training      # ... + PyTorch & co. for training/ and its tests
 #   DLSLAM_BUILD_DIR=b scripts/setup.sh -DDLSLAM_SANITIZE=address   # extra CMake args
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git
-  libeigen3-dev libopencv-dev libceres-dev libyaml-cpp-dev libcli11-dev
+  libeigen3-dev libopencv-dev libjpeg-dev libceres-dev libyaml-cpp-dev libcli11-dev
   libspdlog-dev libfmt-dev nlohmann-json3-dev libtbb-dev
   libcurl4-openssl-dev libarchive-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  # training/ (segmentation network; CI runs its one-batch and model tests with /usr/bin/python3)
-  python3-torch python3-opencv python3-onnx python3-numpy
 )
+# training/ (the segmentation network; its one-batch and model tests run with
+# /usr/bin/python3 and are skipped without these). PyTorch is the bulk of a
+# fresh set-up and the SLAM never uses it, so only on request.
+TRAINING_PACKAGES=(python3-torch python3-opencv python3-onnx python3-numpy)
+
+CMAKE_ARGS=()
+for arg in "$@"; do
+  if [ "$arg" = "--training" ]; then
+    PACKAGES+=("${TRAINING_PACKAGES[@]}")
+  else
+    CMAKE_ARGS+=("$arg")
+  fi
+done
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -29,6 +41,6 @@ if ((${#missing[@]})); then
 fi
 
 BUILD_DIR="${DLSLAM_BUILD_DIR:-build}"
-cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@"
+cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release ${CMAKE_ARGS[@]+"${CMAKE_ARGS[@]}"}
 cmake --build "$BUILD_DIR" --parallel "$(nproc)"
 echo "setup: built $BUILD_DIR/bin/dlslam"

@@ -36,6 +36,7 @@
 #include "dlslam/place/vocabulary_training.h"
 #include "dlslam/semantic/onnx_segmenter.h"
 #include "dlslam/util/check.h"
+#include "dlslam/util/crc32.h"
 #include "tests/support/test_data.h"
 
 namespace dlslam {
@@ -142,14 +143,19 @@ std::string Mutate(const std::string& valid, std::mt19937& rng, std::string& wha
 // Runs `read` on `cases` mutations of `valid` written to `path`. `read`
 // returns "" when what it read is sane, else why not.
 // A refusal must name `path` or, for a sequence folder, `named` (its folder).
+// `reseal` (optional) repairs the format's checksums after each mutation, so
+// that the parser behind the checksum is reached too.
+using Reseal = std::function<void(std::string&)>;
 void Fuzz(const fs::path& path, const std::string& valid, bool text, int cases,
-          const std::function<std::string(const fs::path&)>& read, const std::string& named = "") {
+          const std::function<std::string(const fs::path&)>& read, const std::string& named = "",
+          const Reseal& reseal = {}) {
   int refused = 0, accepted = 0;
   const auto start = std::chrono::steady_clock::now();
   for (int seed = 0; seed < cases; ++seed) {
     std::mt19937 rng(static_cast<unsigned>(seed));
     std::string what;
-    const std::string bytes = Mutate(valid, rng, what, text);
+    std::string bytes = Mutate(valid, rng, what, text);
+    if (reseal) reseal(bytes);
     std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
     const std::string replay = fmt::format("{} seed {}: {}", path.filename().string(), seed, what);
     if (std::getenv("DLSLAM_FUZZ_VERBOSE")) std::cerr << replay << std::endl;  // the last line before a crash
@@ -172,6 +178,25 @@ void Fuzz(const fs::path& path, const std::string& valid, bool text, int cases,
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cerr << fmt::format("{}: {} cases, {} refused, {} accepted sane, {:.2f} s\n", path.filename().string(),
                            cases, refused, accepted, seconds);
+}
+
+// The .dlv CRC-32 over everything before its last 4 bytes, little-endian.
+void ResealVocabulary(std::string& bytes) {
+  if (bytes.size() < 4) return;
+  const std::uint32_t crc = Crc32(std::string_view(bytes.data(), bytes.size() - 4));
+  for (int i = 0; i < 4; ++i) bytes[bytes.size() - 4 + i] = static_cast<char>((crc >> (8 * i)) & 0xFF);
+}
+
+// Every PNG chunk's CRC (big-endian, over type and data) where the chunk fits.
+void ResealPng(std::string& bytes) {
+  const auto u8 = [&](std::size_t i) { return static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])); };
+  for (std::size_t pos = 8; pos + 12 <= bytes.size();) {
+    const std::uint32_t length = u8(pos) << 24 | u8(pos + 1) << 16 | u8(pos + 2) << 8 | u8(pos + 3);
+    if (length > bytes.size() - pos - 12) return;
+    const std::uint32_t crc = Crc32(std::string_view(bytes.data() + pos + 4, length + 4));
+    for (int i = 0; i < 4; ++i) bytes[pos + 8 + length + i] = static_cast<char>((crc >> (24 - 8 * i)) & 0xFF);
+    pos += 12 + length;
+  }
 }
 
 std::string ReadText(const fs::path& path) {
@@ -321,6 +346,7 @@ TEST_F(InputFuzzTest, Images) {
     return image.type() == CV_8UC3 && image.cols == 64 && image.rows == 48 ? "" : "wrong type or size";
   };
   Fuzz(dir_ / "colour.png", bytes(png), false, Cases(300), colour_reader);
+  Fuzz(dir_ / "resealed.png", bytes(png), false, Cases(300), colour_reader, "", ResealPng);
   Fuzz(dir_ / "colour.jpg", bytes(jpeg), false, Cases(300), colour_reader);
   Fuzz(dir_ / "depth.png", bytes(depth_png), false, Cases(300), [](const fs::path& path) -> std::string {
     const cv::Mat image = io::ReadDepthImage({path, {}, 0}, 5000.0, 64, 48);
@@ -349,7 +375,7 @@ TEST_F(InputFuzzTest, Vocabularies) {
   options.threads = 1;
   const std::string valid = place::SerializeVocabulary(place::TrainVocabulary(training, options));
   const auto probe = training.image(0);
-  Fuzz(dir_ / "vocab.dlv", valid, false, Cases(500), [&](const fs::path& path) -> std::string {
+  const auto read = [&](const fs::path& path) -> std::string {
     const place::Vocabulary vocabulary = place::ParseVocabulary(ReadText(path), path);
     // Usable: every descriptor lands on a word of the tree.
     place::BowVector bow;
@@ -359,7 +385,9 @@ TEST_F(InputFuzzTest, Vocabularies) {
       if (word >= vocabulary.word_count() || !std::isfinite(weight)) return "word or weight out of range";
     }
     return "";
-  });
+  };
+  Fuzz(dir_ / "vocab.dlv", valid, false, Cases(300), read);
+  Fuzz(dir_ / "resealed.dlv", valid, false, Cases(500), read, "", ResealVocabulary);
 }
 
 TEST_F(InputFuzzTest, SegmentationModels) {

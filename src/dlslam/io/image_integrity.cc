@@ -1,3 +1,4 @@
+#include "dlslam/data/camera.h"
 #include "dlslam/io/image_integrity.h"
 
 #include <fmt/format.h>
@@ -39,6 +40,13 @@ std::optional<std::string> CheckPng(std::span<const std::uint8_t> b) {
     const std::uint32_t computed = Crc32(b.subspan(pos + 4, length + 4));
     if (stored != computed) {
       return fmt::format("corrupt PNG: chunk '{}' at byte {} fails its CRC check", name, pos);
+    }
+    if (name == "IHDR" && length >= 8) {
+      // Refused before OpenCV allocates width x height (a 100 KB file may claim 10^9 pixels).
+      const std::uint32_t width = BigEndian32(&b[pos + 8]), height = BigEndian32(&b[pos + 12]);
+      if (width > static_cast<std::uint32_t>(kMaxImageSide) || height > static_cast<std::uint32_t>(kMaxImageSide)) {
+        return fmt::format("PNG of {}x{} px, more than {} px on a side", width, height, kMaxImageSide);
+      }
     }
     ++chunks;
     pos += 12 + length;

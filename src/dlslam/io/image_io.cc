@@ -5,7 +5,9 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "dlslam/data/camera.h"
 #include "dlslam/io/image_integrity.h"
+#include "dlslam/io/jpeg_decode.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam::io {
@@ -43,6 +45,11 @@ cv::Mat Decode(const ImageSource& source, const char* kind, int flags) {
   if (in.bad() || static_cast<std::uintmax_t>(in.gcount()) != size) Fail(source, kind, "read error");
   if (bytes.empty()) Fail(source, kind, "empty file (0 bytes)");
   if (const std::optional<std::string> problem = CheckImageIntegrity(bytes)) Fail(source, kind, *problem);
+  if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) {
+    JpegDecodeResult jpeg = DecodeJpeg(bytes, kMaxImageSide);
+    if (jpeg.image.empty()) Fail(source, kind, jpeg.problem);
+    return jpeg.image;
+  }
   cv::Mat image;
   try {
     image = cv::imdecode(bytes, flags);
