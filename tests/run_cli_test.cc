@@ -5,6 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -78,6 +80,31 @@ TEST_F(RunCliTest, BadModeSearchAndFusionNamesAreRefused) {
     EXPECT_NE(run.exit_code, 0) << bad;
     EXPECT_THAT(run.output, HasSubstr(bad.substr(bad.find(' ') + 1))) << bad;
     EXPECT_THAT(run.output, HasSubstr("not in")) << run.output;
+  }
+}
+
+TEST_F(RunCliTest, EveryBadArgumentIsOneErrorLineAndExitStatusOne) {
+  // Each was once accepted: -1 wrapped to 2^64 - 1, '' read as 0 or as the
+  // current folder, inf gave a 0 ms budget.
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {RunArgs(Walk(), "--max-frames -1"), "--max-frames: expected a whole number in 0..1000000000, got '-1'"},
+      {RunArgs(Walk(), "--max-frames ''"), "--max-frames: empty value"},
+      {RunArgs(Walk(), "--max-frames=''"), "--max-frames: empty value"},
+      {RunArgs(Walk(), "--max-frames 18446744073709551616"), "got '18446744073709551616'"},
+      {RunArgs(Walk(), "--depth-factor 1e-300"), "--depth-factor: expected a number in [0.01, 100000]"},
+      {RunArgs(Walk(), "--settings /dev/null"), "/dev/null: not a regular file"},
+      {"bench --camera-hz inf", "--camera-hz: expected a number in [0.1, 1000], got 'inf'"},
+      {"synth --out '' --frames 3", "--out: empty value"},
+      {"vocab train --images . --out v.dlv --threads 100000", "--threads: expected a whole number in 0..256"},
+      {"nosuchcmd", "unknown command 'nosuchcmd'"},
+      {"run --sequence " + std::string(300, 'a'), "File name too long"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const CliRun run = Cli(args);
+    EXPECT_EQ(run.exit_code, 1) << args << "\n" << run.output;
+    EXPECT_THAT(run.output, HasSubstr("[error] ")) << args;
+    EXPECT_THAT(run.output, HasSubstr(expected)) << args;
+    EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << args << "\n" << run.output;
   }
 }
 

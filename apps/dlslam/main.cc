@@ -45,6 +45,17 @@ void RefuseEmptyArguments(int argc, char** argv) {
   }
 }
 
+// CLI11 reports "dlslam nosuchcmd" as "A subcommand is required".
+void RefuseUnknownCommand(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return;
+  std::string known;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    if (sub->get_name() == argv[1]) return;
+    known += (known.empty() ? "" : ", ") + sub->get_name();
+  }
+  throw dlslam::Error(fmt::format("unknown command {} (known: {}; see dlslam --help)", dlslam::Quoted(argv[1]), known));
+}
+
 // The command whose --help explains the refused arguments.
 std::string HelpCommand(const CLI::App& app) {
   std::string command = "dlslam";
@@ -86,6 +97,7 @@ int main(int argc, char** argv) {
   // --version print to stdout and exit 0.
   try {
     RefuseEmptyArguments(argc, argv);
+    RefuseUnknownCommand(app, argc, argv);
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {  // --help, --help-all, --version
     return app.exit(e);
