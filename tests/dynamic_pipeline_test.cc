@@ -10,6 +10,8 @@
 #include "dlslam/synth/actors.h"
 #include "dlslam/synth/sequence.h"
 #include "dlslam/system/slam_system.h"
+#include "dlslam/util/check.h"
+#include "tests/support/test_data.h"
 
 namespace dlslam {
 namespace {
@@ -85,6 +87,7 @@ class DynamicPipelineTest : public ::testing::Test {
     SystemOptions options;
     options.sequential = setup.sequential;
     options.dynamic.mode = setup.mode;
+    options.semantic.network = false;  // each frame brings its rendered person mask
     options.dynamic.geometry.search = setup.search;
     options.dynamic.fusion.drop_moving_movables = setup.drop_moving_movables;
     if (setup.region_reach_m > 0) options.dynamic.geometry.region.max_distance_from_seed_m = setup.region_reach_m;
@@ -218,6 +221,34 @@ TEST_F(DynamicPipelineTest, FullModeWithTheMappingThread) {
   EXPECT_EQ(full.stats.frames_tracked, kFrames);
   EXPECT_LT(full.ate_rmse, 0.02);
   EXPECT_GT(full.stats.dynamic.recall().value_or(0), 0.8);
+}
+
+TEST_F(DynamicPipelineTest, TheLibraryRunsTheNetworkInItsSemanticThread) {
+  // No prior per frame: the system segments each frame itself (the tiny
+  // identity-colour model of the fixtures stands in for the network), at
+  // the rate asked for, and times it as stage "semantic".
+  SystemOptions options;
+  options.sequential = true;
+  options.dynamic.mode = DynamicMode::kSemantic;
+  options.semantic.segmenter.model_path = testing::FixturePath("semantic/identity_rgb.onnx");
+  options.semantic.worker.segment_every = 2;
+  SlamSystem slam(*camera_, options);
+  const int frames = 20;
+  for (int i = 0; i < frames; ++i) {
+    const Rendered& f = (*frames_)[static_cast<std::size_t>(i)];
+    slam.TrackRgbd(f.colour, f.depth, f.timestamp);
+  }
+  slam.Shutdown();
+  const RunStats stats = slam.Stats();
+  ASSERT_EQ(stats.timing_ms.count("semantic"), 1u);
+  EXPECT_EQ(stats.timing_ms.at("semantic").count, static_cast<std::size_t>(frames));
+  EXPECT_EQ(stats.frames_tracked, frames);
+
+  // A broken model is refused when the system is made, naming the file.
+  options.semantic.segmenter.model_path = testing::FixturePath("semantic/missing.onnx");
+  EXPECT_THROW(SlamSystem(*camera_, options), InputError);
+  options.semantic.network = false;  // the caller brings the priors: no model is loaded
+  EXPECT_NO_THROW(SlamSystem(*camera_, options));
 }
 
 }  // namespace

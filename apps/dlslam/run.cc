@@ -73,14 +73,15 @@ RunOutcome RunSequence(const RunArgs& args) {
   const bool wants_prior = UsesSemanticPrior(options.dynamic.mode);
   const io::RgbdSequence sequence = io::RgbdSequence::Open(args.sequence, args.sequence_options);
   const CameraIntrinsics& camera = sequence.camera();
+  // The network runs in the library's semantic thread; masks given by the
+  // user come through a prior source instead.
   std::unique_ptr<SemanticPriorSource> prior_source;
-  if (wants_prior && args.semantic_masks.empty()) {
-    semantic::SegmenterOptions segmenter;
-    segmenter.model_path = args.semantic_model;
-    semantic::SegmentationWorkerOptions worker;
-    worker.segment_every = args.segment_every;
-    prior_source = MakeNetworkPriorSource(segmenter, worker);
-    spdlog::info("semantic prior: {}", prior_source->Describe());
+  options.semantic.network = wants_prior && args.semantic_masks.empty();
+  options.semantic.segmenter.model_path = args.semantic_model;
+  options.semantic.worker.segment_every = args.segment_every;
+  if (options.semantic.network) {
+    spdlog::info("semantic prior: the segmentation network, {}",
+                 args.segment_every == 1 ? std::string("every frame") : fmt::format("every {} frames", args.segment_every));
   } else if (wants_prior) {
     prior_source = MakeSemanticPriorSource(args.semantic_masks, sequence);
     spdlog::info("semantic prior: {}", prior_source->Describe());
@@ -106,7 +107,6 @@ RunOutcome RunSequence(const RunArgs& args) {
     DynamicInputs inputs;
     if (!f.mask.empty()) inputs.moving_truth = MovingTruthFromLabels(f.mask);
     if (prior_source) {
-      prior_source->Submit(i, f);
       inputs.semantic_prior = [&] {
         SemanticPrior prior = prior_source->Prior(i, f);
         source_timings.Add("semantic", prior.compute_ms);

@@ -1,7 +1,6 @@
 #include "semantic_prior.h"
 
 #include "dlslam/io/image_io.h"
-#include "dlslam/semantic/segmentation_worker.h"
 #include "dlslam/synth/actors.h"
 #include "dlslam/synth/renderer.h"
 #include "dlslam/util/check.h"
@@ -53,43 +52,7 @@ class FolderPriorSource : public SemanticPriorSource {
   const io::RgbdSequence& sequence_;
 };
 
-// The segmentation network in its own thread (semantic::SegmentationWorker):
-// Submit hands the frame over before ORB extraction, Prior waits for it.
-class NetworkPriorSource : public SemanticPriorSource {
- public:
-  NetworkPriorSource(const semantic::SegmenterOptions& segmenter, const semantic::SegmentationWorkerOptions& worker)
-      : worker_(semantic::MakeSegmenter(segmenter), worker) {}
-
-  void Submit(std::size_t index, const io::RgbdFrame& frame) override {
-    pending_ = worker_.Submit(frame.color);
-    pending_index_ = index;
-  }
-
-  SemanticPrior Prior(std::size_t index, const io::RgbdFrame& /*frame*/) override {
-    DLSLAM_CHECK(pending_.valid() && pending_index_ == index, "frame {} was not submitted to the segmentation worker",
-                 index);
-    const semantic::SegmentationResult& result = pending_.get();
-    return {result.dynamic_mask, result.movable_mask, result.seconds * 1e3};
-  }
-
-  std::string Describe() const override {
-    const semantic::SegmentationWorkerOptions& o = worker_.options();
-    return o.segment_every == 1 ? std::string("the segmentation network, every frame")
-                                : fmt::format("the segmentation network, every {} frames", o.segment_every);
-  }
-
- private:
-  semantic::SegmentationWorker worker_;
-  std::shared_future<semantic::SegmentationResult> pending_;
-  std::size_t pending_index_ = 0;
-};
-
 }  // namespace
-
-std::unique_ptr<SemanticPriorSource> MakeNetworkPriorSource(const semantic::SegmenterOptions& segmenter,
-                                                            const semantic::SegmentationWorkerOptions& worker) {
-  return std::make_unique<NetworkPriorSource>(segmenter, worker);
-}
 
 std::unique_ptr<SemanticPriorSource> MakeSemanticPriorSource(const std::string& spec,
                                                              const io::RgbdSequence& sequence) {

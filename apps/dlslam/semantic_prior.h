@@ -1,13 +1,9 @@
 #pragma once
-// Where `dlslam run` gets each frame's semantic a-priori mask: the pixels of
-// classes that may move (people), as a segmentation network gives them. One
-// small interface, so that a network running in its own thread plugs in
-// beside the ground-truth and folder sources:
-//   source->Submit(i, frame);                 // before TrackRgbd: start work
+// Where `dlslam run --semantic-masks` gets each frame's semantic a-priori
+// mask instead of the network (which runs in the library's semantic thread,
+// SystemOptions::semantic): the sequence's ground truth or a folder of masks.
 //   slam.TrackRgbd(..., {[&] { SemanticPrior p = source->Prior(i, frame);
 //                              return dynamic::SemanticMasks{p.mask, p.movable}; }});
-// TrackRgbd calls the deferred Prior after ORB extraction, so a network
-// overlaps with feature extraction and tracking waits only for the rest.
 
 #include <filesystem>
 #include <memory>
@@ -16,8 +12,6 @@
 #include <opencv2/core.hpp>
 
 #include "dlslam/io/sequence.h"
-#include "dlslam/semantic/segmentation_worker.h"
-#include "dlslam/semantic/segmenter.h"
 
 namespace dlslam::app {
 
@@ -30,11 +24,8 @@ struct SemanticPrior {
 class SemanticPriorSource {
  public:
   virtual ~SemanticPriorSource() = default;
-  // Frame `index` is about to be tracked; a source with a worker starts on it
-  // here. Default: nothing (the work happens in Prior).
-  virtual void Submit(std::size_t /*index*/, const io::RgbdFrame& /*frame*/) {}
-  // The prior of the frame last submitted; may block until it is ready.
-  // Throws InputError when its input is missing or bad.
+  // The prior of frame `index`. Throws InputError when its input is missing
+  // or bad.
   virtual SemanticPrior Prior(std::size_t index, const io::RgbdFrame& frame) = 0;
   // One line for the log, e.g. "ground-truth masks (class person)".
   virtual std::string Describe() const = 0;
@@ -48,12 +39,6 @@ class SemanticPriorSource {
 // the sequence has no masks (gt) or the folder does not exist.
 std::unique_ptr<SemanticPriorSource> MakeSemanticPriorSource(const std::string& spec,
                                                              const io::RgbdSequence& sequence);
-
-// The segmentation network (the shipped model unless segmenter.model_path is
-// set) in its own thread. Throws InputError naming the model file when it is
-// missing or unusable.
-std::unique_ptr<SemanticPriorSource> MakeNetworkPriorSource(const semantic::SegmenterOptions& segmenter,
-                                                            const semantic::SegmentationWorkerOptions& worker);
 
 // Ground truth of `dlslam synth` labels (class + 128 if moving): 255 where
 // the moving bit is set (what should be removed), for statistics.

@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include "dlslam/place/vocabulary_file.h"
 #include "dlslam/util/check.h"
 
@@ -84,6 +86,12 @@ SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& opti
   if (options_.loop_closing) {
     loop_closer_ = std::make_unique<LoopCloser>(options_.loop, &map_, index_.get(), &mapper_, &timings_);
   }
+  if (options_.semantic.network && UsesSemanticPrior(options_.dynamic.mode)) {
+    // Loads the model now: a missing or broken file is an InputError here,
+    // not on the first frame.
+    segmentation_ = std::make_unique<semantic::SegmentationWorker>(semantic::MakeSegmenter(options_.semantic.segmenter),
+                                                                   options_.semantic.worker);
+  }
   if (options_.sequential) return;
   tracker_.SetMappingBacklog([this] { return mapper_.backlog(); });
   mapper_.Start();
@@ -110,12 +118,25 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
                camera_.width, camera_.height);
   ++counts_.frames;
   Stopwatch total;
+  DynamicInputs inputs = dynamic;
+  if (segmentation_ && !inputs.semantic_prior) {
+    // Handed to the semantic thread before ORB extraction; the dynamic stage
+    // waits for the masks only after it.
+    cv::Mat bgr = colour;
+    if (colour.type() == CV_8UC1) cv::cvtColor(colour, bgr, cv::COLOR_GRAY2BGR);
+    std::shared_future<semantic::SegmentationResult> pending = segmentation_->Submit(bgr);
+    inputs.semantic_prior = [this, pending] {
+      const semantic::SegmentationResult& masks = pending.get();
+      timings_.Add("semantic", masks.seconds * 1e3);
+      return dynamic::SemanticMasks{masks.dynamic_mask, masks.movable_mask};
+    };
+  }
   Stopwatch watch;
   const features::OrbFeatures features = extractor_.Extract(colour);
   timings_.Add("orb_extraction", watch.ElapsedMs());
   auto frame = std::make_shared<Frame>(
       Frame::Create(timestamp, features.keypoints, features.descriptors, depth, camera_, pyramid_));
-  const DynamicRemoval removal = dynamic_.Process(*frame, depth, dynamic);
+  const DynamicRemoval removal = dynamic_.Process(*frame, depth, inputs);
   if (removal.count > 0) {
     // Tracking and mapping see only static keypoints: extracted again
     // outside the removed regions when many were removed, else the others.
@@ -190,6 +211,7 @@ void SlamSystem::MarkLost(double timestamp) {
 
 void SlamSystem::Shutdown() {
   if (shut_down_) return;
+  if (segmentation_) segmentation_->Stop();
   mapper_.Stop();
   if (loop_closer_) loop_closer_->Stop();
   shut_down_ = true;

@@ -1,11 +1,13 @@
 #pragma once
 // The one entry point of the SLAM library: feed RGB-D frames, get poses.
-// Owns the feature extractor, the tracker (on the caller's thread), the map
-// and the local-mapping thread (or runs mapping inline in sequential mode,
-// which is reproducible bit for bit).
+// Owns the feature extractor, the tracker (on the caller's thread), the map,
+// the local-mapping thread (or runs mapping inline in sequential mode,
+// which is reproducible bit for bit) and, in modes semantic and full, the
+// semantic thread: the segmentation network in its own worker.
 //
 //   SlamSystem slam(camera, options);          // options.dynamic.mode: orb, semantic, geometry, full
-//   for (...) slam.TrackRgbd(bgr, depth_m, t, semantic_prior);
+//   for (...) slam.TrackRgbd(bgr, depth_m, t); // the network's masks, segmented while ORB runs
+//   for (...) slam.TrackRgbd(bgr, depth_m, t, my_masks);   // or priors of your own
 //   slam.Shutdown();
 //   io::WriteTumTrajectory("traj.txt", slam.CameraTrajectory());
 
@@ -20,6 +22,7 @@
 #include "dlslam/map/map.h"
 #include "dlslam/mapping/local_mapper.h"
 #include "dlslam/place/keyframe_index.h"
+#include "dlslam/semantic/segmentation_worker.h"
 #include "dlslam/system/dynamic_stage.h"
 #include "dlslam/tracking/tracker.h"
 #include "dlslam/util/timing.h"
@@ -33,12 +36,28 @@ namespace dlslam {
 // crowded frames).
 features::OrbOptions StaticOrbOptions();
 
+// The semantic thread of modes semantic and full.
+struct SemanticThreadOptions {
+  // Segment every frame that comes without a prior of its own
+  // (DynamicInputs::semantic_prior empty) with the network, in the system's
+  // worker thread. false: the caller always gives the prior (ground-truth
+  // masks, a folder of masks, its own network); no model is loaded.
+  bool network = true;
+  // The network: model file ("" = the shipped one), input size, classes,
+  // mask margin.
+  semantic::SegmenterOptions segmenter;
+  // The worker: queue length, rate (segment every k-th frame, propagating
+  // the masks to the frames between).
+  semantic::SegmentationWorkerOptions worker;
+};
+
 struct SystemOptions {
   features::OrbOptions orb;
   features::OrbOptions static_orb = StaticOrbOptions();
   TrackerOptions tracker;
   LocalMapperOptions mapping;
   DynamicOptions dynamic;
+  SemanticThreadOptions semantic;
   // When the dynamic stage removes at least this share of a frame's
   // keypoints, its ORB features are extracted again outside the removed
   // regions, so that tracking gets the whole keypoint budget on static
@@ -102,9 +121,10 @@ class SlamSystem {
   // One frame: colour (CV_8UC3 BGR or CV_8UC1), depth (CV_32FC1 metres,
   // registered to colour, 0 = none; may be empty), and what the dynamic
   // stage may use (dynamic_stage.h): the semantic prior, deferred so that a
-  // segmentation thread can work while ORB features are extracted, and
-  // ground truth for statistics. Keypoints are extracted on the whole image;
-  // the mode decides which are then ignored by tracking and mapping.
+  // segmentation thread can work while ORB features are extracted (empty:
+  // the system's own network, when options.semantic.network), and ground
+  // truth for statistics. Keypoints are extracted on the whole image; the
+  // mode decides which are then ignored by tracking and mapping.
   TrackingResult TrackRgbd(const cv::Mat& colour, const cv::Mat& depth, double timestamp,
                            const DynamicInputs& dynamic);
   // The same with the semantic prior at hand (CV_8UC1, non-zero = a class
@@ -113,8 +133,8 @@ class SlamSystem {
                            const cv::Mat& semantic_prior = cv::Mat());
   // A frame that could not be read counts as lost.
   void MarkLost(double timestamp);
-  // Finishes local mapping, then loop closing (and a running global bundle
-  // adjustment). Called by the destructor too.
+  // Finishes the semantic thread, local mapping, then loop closing (and a
+  // running global bundle adjustment). Called by the destructor too.
   void Shutdown();
 
   // world_from_cam of every tracked frame, from its reference keyframe's
@@ -152,6 +172,9 @@ class SlamSystem {
   DynamicStage dynamic_;
   LocalMapper mapper_;
   std::unique_ptr<LoopCloser> loop_closer_;  // null without loop closing
+  // The network in its thread; null in modes orb and geometry, or without
+  // options.semantic.network.
+  std::unique_ptr<semantic::SegmentationWorker> segmentation_;
   std::vector<FrameRecord> tracked_;
   std::vector<FramePoseSource> sources_;
   RunStats counts_;
