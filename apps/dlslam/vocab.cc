@@ -203,7 +203,7 @@ void AddVocabCommand(CLI::App& app) {
       ->capture_default_str()->check(WholeNumber(1, 10000));
   train->add_option("--seed", train_args->options.seed, "Seed (same seed and images: same file)")
       ->capture_default_str()->check(WholeNumber(0, 9223372036854775807));
-  train->add_option("--threads", train_args->options.threads, "Threads (0 = all cores)")->capture_default_str()->check(WholeNumber(0, 256));
+  train->add_option("--threads", train_args->options.threads, "Threads (0 = all cores)")->capture_default_str()->check(WholeNumber(0, place::kMaxVocabularyThreads));
   train->callback([train_args] { RunTrain(*train_args); });
 
   auto info_file = std::make_shared<std::string>();

@@ -6,6 +6,7 @@
 #include <exception>
 #include <functional>
 #include <mutex>
+#include <system_error>
 #include <thread>
 
 #include "dlslam/place/binary_kmeans.h"
@@ -40,8 +41,13 @@ void ParallelFor(std::size_t n, int threads, const std::function<void(std::size_
       }
     }
   };
+  // A thread that cannot be started (the system's limit) leaves the work to
+  // those that did; every started one is joined, never left to terminate().
   std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(work);
+  try {
+    for (int w = 1; w < workers; ++w) pool.emplace_back(work);
+  } catch (const std::system_error&) {
+  }
   work();
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
@@ -65,7 +71,8 @@ void VocabularyOptions::Check() const {
   DLSLAM_CHECK(std::pow(static_cast<double>(branching), levels) < 4.0e9,
                "vocabulary: k^levels = {}^{} words do not fit 32-bit ids", branching, levels);
   DLSLAM_CHECK_GE(max_iterations, 1, "vocabulary: max_iterations must be at least 1");
-  DLSLAM_CHECK_GE(threads, 0, "vocabulary: threads must be >= 0 (0 = all)");
+  DLSLAM_CHECK(threads >= 0 && threads <= kMaxVocabularyThreads, "vocabulary: threads must be in 0..{} (0 = all), got {}",
+               kMaxVocabularyThreads, threads);
 }
 
 void TrainingDescriptors::AddImage(std::span<const Descriptor> image) {

@@ -14,12 +14,14 @@
 
 namespace dlslam::place {
 
+inline constexpr int kMaxVocabularyThreads = 256;
+
 struct VocabularyOptions {
   int branching = 10;       // k: children per node [count, 2..255]
   int levels = 5;           // L: levels below the root [count, 1..16]; up to k^L words
   int max_iterations = 15;  // Lloyd iterations per node, at most [count, >= 1]
   std::uint64_t seed = 0;   // the same seed and data give the same tree
-  int threads = 0;          // worker threads [count]; 0 = all hardware threads
+  int threads = 0;          // worker threads [count, 0..256]; 0 = all hardware threads
   void Check() const;       // throws dlslam::Error with the values
 };
 
