@@ -226,9 +226,10 @@ TEST_F(DynamicPipelineTest, FullModeWithTheMappingThread) {
 TEST_F(DynamicPipelineTest, TheLibraryRunsTheNetworkInItsSemanticThread) {
   // No prior per frame: the system segments each frame itself (the tiny
   // identity-colour model of the fixtures stands in for the network), at
-  // the rate asked for, and times it as stage "semantic".
+  // the rate asked for, and times it as stage "semantic". Threaded, as
+  // deployed: the semantic, mapping and loop threads together (TSan).
   SystemOptions options;
-  options.sequential = true;
+  options.sequential = false;
   options.dynamic.mode = DynamicMode::kSemantic;
   options.semantic.segmenter.model_path = testing::FixturePath("semantic/identity_rgb.onnx");
   options.semantic.worker.segment_every = 2;
