@@ -245,6 +245,22 @@ TEST_F(DynamicPipelineTest, TheLibraryRunsTheNetworkInItsSemanticThread) {
   EXPECT_EQ(stats.timing_ms.at("semantic").count, static_cast<std::size_t>(frames));
   EXPECT_EQ(stats.frames_tracked, frames);
 
+  // Asynchronous masks: the first frame waits for its own (the map's
+  // foundation), the others take the newest finished masks carried to them.
+  options.semantic.wait_for_masks = false;
+  SlamSystem async(*camera_, options);
+  for (int i = 0; i < frames; ++i) {
+    const Rendered& f = (*frames_)[static_cast<std::size_t>(i)];
+    async.TrackRgbd(f.colour, f.depth, f.timestamp);
+  }
+  async.Shutdown();
+  const RunStats async_stats = async.Stats();
+  EXPECT_EQ(async_stats.frames_tracked, frames);
+  EXPECT_GE(async_stats.timing_ms.at("semantic").count, 1u);  // the first frame's wait
+  EXPECT_EQ(async_stats.timing_ms.at("semantic_age_frames").count + async_stats.timing_ms.at("semantic").count,
+            static_cast<std::size_t>(frames));
+  options.semantic.wait_for_masks = true;
+
   // A broken model is refused when the system is made, naming the file.
   options.semantic.segmenter.model_path = testing::FixturePath("semantic/missing.onnx");
   EXPECT_THROW(SlamSystem(*camera_, options), InputError);

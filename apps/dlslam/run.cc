@@ -79,9 +79,12 @@ RunOutcome RunSequence(const RunArgs& args) {
   options.semantic.network = wants_prior && args.semantic_masks.empty();
   options.semantic.segmenter.model_path = args.semantic_model;
   options.semantic.worker.segment_every = args.segment_every;
+  options.semantic.wait_for_masks = !args.async_masks;
   if (options.semantic.network) {
     spdlog::info("semantic prior: the segmentation network, {}",
-                 args.segment_every == 1 ? std::string("every frame") : fmt::format("every {} frames", args.segment_every));
+                 args.async_masks           ? std::string("asynchronous (newest masks carried to each frame)")
+                 : args.segment_every == 1 ? std::string("every frame")
+                                           : fmt::format("every {} frames", args.segment_every));
   } else if (wants_prior) {
     prior_source = MakeSemanticPriorSource(args.semantic_masks, sequence);
     spdlog::info("semantic prior: {}", prior_source->Describe());
@@ -197,6 +200,9 @@ void AddRunCommand(CLI::App& app) {
                   "Segment every k-th frame, propagating the mask to the frames between")
       ->capture_default_str()
       ->check(WholeNumber(1, 100));
+  cmd->add_flag("--async-masks", args->async_masks,
+                "Modes semantic, full (experimental): never wait for the network; use its newest masks, carried to "
+                "each frame with the camera motion and depth");
   cmd->add_flag("--sequential", args->sequential,
                 "Run local mapping inline: deterministic, reproducible bit for bit");
   cmd->add_flag("--no-relocalization", args->no_relocalization, "Do not relocalize a lost camera");

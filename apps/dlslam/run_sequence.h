@@ -24,6 +24,7 @@ struct RunArgs {
   std::string semantic_masks;              // "gt", a folder, or "" (the network)
   std::filesystem::path semantic_model;    // ONNX file; "" = the shipped model
   int segment_every = 1;                   // segment every k-th frame
+  bool async_masks = false;                // --async-masks: never wait for the network
   bool sequential = false;
   bool no_relocalization = false;  // --no-relocalization
   bool no_loop = false;            // --no-loop

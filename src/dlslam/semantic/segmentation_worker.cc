@@ -26,18 +26,37 @@ SegmentationWorker::SegmentationWorker(std::unique_ptr<Segmenter> segmenter,
 
 SegmentationWorker::~SegmentationWorker() { Stop(); }
 
-std::shared_future<SegmentationResult> SegmentationWorker::Submit(cv::Mat bgr) {
+std::shared_future<SegmentationResult> SegmentationWorker::Submit(cv::Mat bgr, long publish_as) {
   DLSLAM_CHECK(!stopping_.load(), "segmentation worker is stopped; no more frames are accepted");
   Job job;
   job.bgr = std::move(bgr);
   job.index = submitted_;
   job.segment = submitted_ % options_.segment_every == 0;
+  job.publish_as = publish_as;
   std::shared_future<SegmentationResult> future = job.promise.get_future().share();
   if (!queue_.Push(std::move(job))) {
     throw Error("segmentation worker stopped while the frame was being submitted");
   }
   ++submitted_;
   return future;
+}
+
+bool SegmentationWorker::TrySubmit(cv::Mat bgr, long frame_id) {
+  DLSLAM_CHECK(!stopping_.load(), "segmentation worker is stopped; no more frames are accepted");
+  Job job;
+  job.bgr = std::move(bgr);
+  job.index = submitted_;
+  job.segment = true;  // a skipped frame is simply not segmented
+  job.publish_as = frame_id;
+  if (!queue_.TryPush(std::move(job))) return false;
+  ++submitted_;
+  return true;
+}
+
+std::optional<SegmentationWorker::Published> SegmentationWorker::Latest() const {
+  std::lock_guard lock(published_mutex_);
+  if (!published_) return std::nullopt;
+  return Published{published_->frame_id, DeepCopy(published_->result)};
 }
 
 void SegmentationWorker::Stop() {
@@ -75,7 +94,12 @@ void SegmentationWorker::Run() {
       continue;
     }
     try {
-      job->promise.set_value(Process(*job));
+      SegmentationResult result = Process(*job);
+      if (job->publish_as >= 0) {
+        std::lock_guard lock(published_mutex_);
+        published_ = Published{job->publish_as, DeepCopy(result)};
+      }
+      job->promise.set_value(std::move(result));
     } catch (...) {
       job->promise.set_exception(std::current_exception());
     }

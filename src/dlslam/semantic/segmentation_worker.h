@@ -53,7 +53,22 @@ class SegmentationWorker {
   // (dlslam::Error from the segmenter, a size change in propagation, or
   // "stopped" when Stop() came first). Throws dlslam::Error after Stop().
   // Call from one thread (the tracker): the frame order is the call order.
-  std::shared_future<SegmentationResult> Submit(cv::Mat bgr);
+  // `publish_as` >= 0: the result is also published for Latest() under that id.
+  std::shared_future<SegmentationResult> Submit(cv::Mat bgr, long publish_as = -1);
+
+  // Never blocks: queues the frame for segmentation when the queue has room,
+  // else returns false and the frame is skipped (the network is behind: no
+  // latency added). Its result is published for Latest(), not returned.
+  // `frame_id` names it there. Throws dlslam::Error after Stop().
+  bool TrySubmit(cv::Mat bgr, long frame_id);
+
+  struct Published {
+    long frame_id = -1;
+    SegmentationResult result;  // owns its pixels
+  };
+  // The newest segmentation finished from TrySubmit, a deep copy; nullopt
+  // before the first. Any thread.
+  std::optional<Published> Latest() const;
 
   // Finishes the frame being segmented, fails the queued ones (their futures
   // throw "stopped") and joins the thread. Idempotent.
@@ -69,6 +84,7 @@ class SegmentationWorker {
     std::promise<SegmentationResult> promise;
     long index = 0;        // submission number
     bool segment = true;   // false: propagate the last segmented frame's masks
+    long publish_as = -1;  // >= 0: TrySubmit's frame id, published for Latest()
   };
 
   void Run();
@@ -83,6 +99,8 @@ class SegmentationWorker {
   // Worker thread only: the last successfully segmented frame and its number.
   std::optional<SegmentationResult> last_;
   long last_index_ = -1;
+  mutable std::mutex published_mutex_;
+  std::optional<Published> published_;  // under published_mutex_
   std::thread thread_;
 };
 

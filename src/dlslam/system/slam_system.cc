@@ -89,8 +89,13 @@ SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& opti
   if (options_.semantic.network && UsesSemanticPrior(options_.dynamic.mode)) {
     // Loads the model now: a missing or broken file is an InputError here,
     // not on the first frame.
+    semantic::SegmentationWorkerOptions worker = options_.semantic.worker;
+    // Asynchronous: one frame waiting at most, so that the newest mask is
+    // at most one network run older than the frame being segmented.
+    if (!options_.semantic.wait_for_masks) worker.queue_capacity = 1;
     segmentation_ = std::make_unique<semantic::SegmentationWorker>(semantic::MakeSegmenter(options_.semantic.segmenter),
-                                                                   options_.semantic.worker);
+                                                                   worker);
+    if (!options_.semantic.wait_for_masks) warper_ = std::make_unique<dynamic::MaskWarper>(camera_);
   }
   if (options_.sequential) return;
   tracker_.SetMappingBacklog([this] { return mapper_.backlog(); });
@@ -119,12 +124,30 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   ++counts_.frames;
   Stopwatch total;
   DynamicInputs inputs = dynamic;
-  if (segmentation_ && !inputs.semantic_prior) {
+  const long frame_id = counts_.frames;
+  // Asynchronous masks once the map has started: the first keyframe (the
+  // initialisation) is the map's foundation and waits for its own masks.
+  const bool carry = warper_ && tracker_.state() != TrackingState::kNotInitialized;
+  if (segmentation_ && !inputs.semantic_prior && carry) {
+    // Asynchronous: the worker reads the frame after TrackRgbd returns, so
+    // it gets its own copy; a busy network skips the frame.
+    cv::Mat bgr;
+    if (colour.type() == CV_8UC1) {
+      cv::cvtColor(colour, bgr, cv::COLOR_GRAY2BGR);
+    } else {
+      bgr = colour.clone();
+    }
+    segmentation_->TrySubmit(bgr, frame_id);
+    recent_.push_back({frame_id, depth.empty() ? cv::Mat() : depth.clone(), std::nullopt});
+    if (recent_.size() > 64) recent_.pop_front();
+    inputs.semantic_prior = [this, frame_id] { return CarriedMasks(frame_id); };
+  } else if (segmentation_ && !inputs.semantic_prior) {
     // Handed to the semantic thread before ORB extraction; the dynamic stage
     // waits for the masks only after it.
     cv::Mat bgr = colour;
     if (colour.type() == CV_8UC1) cv::cvtColor(colour, bgr, cv::COLOR_GRAY2BGR);
-    std::shared_future<semantic::SegmentationResult> pending = segmentation_->Submit(bgr);
+    std::shared_future<semantic::SegmentationResult> pending = segmentation_->Submit(bgr, warper_ ? frame_id : -1);
+    if (warper_) recent_.push_back({frame_id, depth.empty() ? cv::Mat() : depth.clone(), std::nullopt});
     inputs.semantic_prior = [this, pending] {
       const semantic::SegmentationResult& masks = pending.get();
       timings_.Add("semantic", masks.seconds * 1e3);
@@ -156,6 +179,7 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   watch = Stopwatch();
   const TrackingResult result = tracker_.Track(frame);
   timings_.Add("tracking", watch.ElapsedMs());
+  if (warper_ && !recent_.empty() && recent_.back().id == frame_id) recent_.back().cam_from_world = result.cam_from_world;
   // Attempts on frames without features (black, covered) cost nothing and
   // would only pull the median down.
   if (result.relocalization_ms >= 0 && frame->size() > 0) {
@@ -207,6 +231,33 @@ void SlamSystem::MarkLost(double timestamp) {
     spdlog::debug("t={:.6f}: {} -> lost (frame unreadable)", timestamp, ToString(last_state_));
   }
   if (last_state_ != TrackingState::kNotInitialized) last_state_ = TrackingState::kLost;
+}
+
+dynamic::SemanticMasks SlamSystem::CarriedMasks(long frame_id) {
+  const Stopwatch watch;
+  const std::optional<semantic::SegmentationWorker::Published> latest = segmentation_->Latest();
+  if (!latest) return {};  // nothing segmented yet: geometry alone
+  const semantic::SegmentationResult& masks = latest->result;
+  const long age = frame_id - latest->frame_id;
+  timings_.Add("semantic_age_frames", static_cast<double>(age));
+  if (age <= 0) return {masks.dynamic_mask, masks.movable_mask};
+  // Frame s's depth and pose, and the prediction of this frame's.
+  const RecentFrame* source = nullptr;
+  for (const RecentFrame& r : recent_) {
+    if (r.id == latest->frame_id) source = &r;
+  }
+  const std::optional<SE3d> predicted = tracker_.PredictedCamFromWorld();
+  SE3d t_from_s;  // identity when a pose is missing: the masks stay, grown
+  if (source && source->cam_from_world && predicted) t_from_s = *predicted * source->cam_from_world->Inverse();
+  const cv::Mat depth = source ? source->depth : cv::Mat();
+  const int grow = std::min(options_.semantic.max_carry_grow_px, options_.semantic.carry_grow_px * static_cast<int>(age));
+  dynamic::SemanticMasks carried;
+  carried.dynamic = warper_->Warp(masks.dynamic_mask, depth, t_from_s, grow);
+  if (!masks.movable_mask.empty() && cv::countNonZero(masks.movable_mask) > 0) {
+    carried.movable = warper_->Warp(masks.movable_mask, depth, t_from_s, grow);
+  }
+  timings_.Add("semantic_carry", watch.ElapsedMs());
+  return carried;
 }
 
 void SlamSystem::Shutdown() {

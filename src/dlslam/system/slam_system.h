@@ -11,12 +11,14 @@
 //   slam.Shutdown();
 //   io::WriteTumTrajectory("traj.txt", slam.CameraTrajectory());
 
+#include <deque>
 #include <map>
 #include <memory>
 #include <string>
 
 #include "dlslam/data/camera.h"
 #include "dlslam/data/trajectory.h"
+#include "dlslam/dynamic/mask_warp.h"
 #include "dlslam/features/orb_extractor.h"
 #include "dlslam/loop/loop_closer.h"
 #include "dlslam/map/map.h"
@@ -49,6 +51,15 @@ struct SemanticThreadOptions {
   // The worker: queue length, rate (segment every k-th frame, propagating
   // the masks to the frames between).
   semantic::SegmentationWorkerOptions worker;
+  // true: each frame waits for its own masks (after ORB extraction). false
+  // (asynchronous, experimental): the tracker never waits; a frame is
+  // segmented only when the network is free, and each frame uses the newest
+  // finished masks carried to it with the predicted camera motion and that
+  // frame's depth (dynamic::MaskWarper), grown by carry_grow_px per frame of
+  // age; geometry covers what moved in between. segment_every is unused.
+  bool wait_for_masks = true;
+  int carry_grow_px = 8;       // [px / frame of age]
+  int max_carry_grow_px = 24;  // [px]
 };
 
 struct SystemOptions {
@@ -175,6 +186,16 @@ class SlamSystem {
   // The network in its thread; null in modes orb and geometry, or without
   // options.semantic.network.
   std::unique_ptr<semantic::SegmentationWorker> segmentation_;
+  // Asynchronous masks (!options.semantic.wait_for_masks): the recent
+  // frames' depth and pose, to carry a finished mask to the current frame.
+  struct RecentFrame {
+    long id = 0;
+    cv::Mat depth;
+    std::optional<SE3d> cam_from_world;
+  };
+  dynamic::SemanticMasks CarriedMasks(long frame_id);
+  std::deque<RecentFrame> recent_;
+  std::unique_ptr<dynamic::MaskWarper> warper_;
   std::vector<FrameRecord> tracked_;
   std::vector<FramePoseSource> sources_;
   RunStats counts_;

@@ -120,6 +120,11 @@ class Tracker {
   void SetMappingBacklog(std::function<std::size_t()> backlog) { mapping_backlog_ = std::move(backlog); }
 
   TrackingState state() const { return state_; }
+  // The constant-velocity guess of the next frame's cam_from_world; nullopt
+  // before the first tracked frame.
+  std::optional<SE3d> PredictedCamFromWorld() const {
+    return last_pose_ ? std::optional<SE3d>(PredictedPose()) : std::nullopt;
+  }
   // The keyframe the last tracked frame shares most points with.
   KeyFrameId reference_keyframe() const { return reference_keyframe_; }
 
