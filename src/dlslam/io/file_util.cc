@@ -49,17 +49,17 @@ std::uintmax_t CheckReadableFile(const std::filesystem::path& path, std::uintmax
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (ec && ec != std::errc::no_such_file_or_directory) {
-    throw InputError(path, 0, "cannot read this {}: {}", what, ec.message());  // ELOOP, ENAMETOOLONG
+    throw InputError(path, 0, "cannot read it: {}", ec.message());  // ELOOP, ENAMETOOLONG
   }
   if (!std::filesystem::exists(status)) throw InputError(path, 0, "file not found");
-  if (std::filesystem::is_directory(status)) throw InputError(path, 0, "a folder, expected a {}", what);
+  if (std::filesystem::is_directory(status)) throw InputError(path, 0, "a folder, expected {}", what);
   if (!std::filesystem::is_regular_file(status)) {
     throw InputError(path, 0, "not a regular file (a device, FIFO or socket)");
   }
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) throw InputError(path, 0, "cannot read the size of this {}: {}", what, ec.message());
+  if (ec) throw InputError(path, 0, "cannot read its size: {}", ec.message());
   if (size > max_bytes) {
-    throw InputError(path, 0, "{} bytes, more than the {} a {} may have", size,
+    throw InputError(path, 0, "{} bytes, more than the {} {} may have", size,
                      max_bytes >= (1u << 20) ? fmt::format("{} MB", max_bytes >> 20)
                                              : fmt::format("{} KB", max_bytes >> 10),
                      what);
@@ -67,8 +67,8 @@ std::uintmax_t CheckReadableFile(const std::filesystem::path& path, std::uintmax
   return size;
 }
 
-std::string ReadFileBytes(const std::filesystem::path& path, std::uintmax_t max_bytes) {
-  CheckReadableFile(path, max_bytes);
+std::string ReadFileBytes(const std::filesystem::path& path, std::uintmax_t max_bytes, std::string_view what) {
+  CheckReadableFile(path, max_bytes, what);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "cannot open for reading");
   in.seekg(0, std::ios::end);

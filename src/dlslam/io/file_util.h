@@ -20,12 +20,14 @@ void WriteFileAtomically(const std::filesystem::path& path,
 // Size of `path` after checking that it can be read as a file: InputError
 // (line 0) when it is missing, a folder, a device, FIFO or socket (read
 // without end), a symlink loop or an unusable name, or over `max_bytes`.
-// `what` names the kind of file in the message ("settings file").
+// `what` names the kind of file in the message, with its article ("a
+// settings file", "an image").
 std::uintmax_t CheckReadableFile(const std::filesystem::path& path, std::uintmax_t max_bytes,
-                                 std::string_view what = "file");
+                                 std::string_view what = "a file");
 
-// The whole file in one read, after CheckReadableFile(path, max_bytes).
-std::string ReadFileBytes(const std::filesystem::path& path, std::uintmax_t max_bytes = 1ull << 30);
+// The whole file in one read, after CheckReadableFile(path, max_bytes, what).
+std::string ReadFileBytes(const std::filesystem::path& path, std::uintmax_t max_bytes = 1ull << 30,
+                          std::string_view what = "a file");
 
 // Regular files under `root` (recursively, following no symlinked folders)
 // whose extension is one of `extensions` (with the dot, compared without

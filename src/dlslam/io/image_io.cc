@@ -1,11 +1,13 @@
 #include "dlslam/io/image_io.h"
 
-#include <fstream>
+#include <cstdint>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <vector>
+#include <span>
+#include <string>
 
 #include "dlslam/data/camera.h"
+#include "dlslam/io/file_util.h"
 #include "dlslam/io/image_integrity.h"
 #include "dlslam/io/jpeg_decode.h"
 #include "dlslam/util/check.h"
@@ -21,28 +23,19 @@ namespace {
 // Larger than any RGB-D frame (a 4K 16-bit PNG stored raw is ~50 MB).
 constexpr std::uintmax_t kMaxImageBytes = 256ull << 20;
 
-// Reads the bytes ourselves so that a missing, unreadable and empty file each
-// get their own message (cv::imread reports all three as an empty Mat), and
-// checks their structure: OpenCV decodes a truncated or corrupted file into
-// grey pixels with only a warning.
+// Reads the bytes ourselves (ReadFileBytes: regular files under 256 MB only)
+// so that a missing, unreadable and empty file each get their own message
+// (cv::imread reports all three as an empty Mat), and checks their
+// structure: OpenCV decodes a truncated or corrupted file into grey pixels
+// with only a warning.
 cv::Mat Decode(const ImageSource& source, const char* kind, int flags) {
-  std::error_code ec;
-  if (!std::filesystem::exists(source.image, ec)) Fail(source, kind, "file not found");
-  if (std::filesystem::is_directory(source.image, ec)) Fail(source, kind, "is a directory");
-  // A device or a FIFO (/dev/zero) would be read without end.
-  if (!std::filesystem::is_regular_file(source.image, ec)) {
-    Fail(source, kind, "not a regular file (a device, FIFO or socket)");
+  std::string file;
+  try {
+    file = ReadFileBytes(source.image, kMaxImageBytes, "an image");
+  } catch (const InputError& e) {
+    Fail(source, kind, e.problem());  // named with the list line that referenced it
   }
-  const std::uintmax_t size = std::filesystem::file_size(source.image, ec);
-  if (ec) Fail(source, kind, "cannot read its size: " + ec.message());
-  if (size > kMaxImageBytes) {
-    Fail(source, kind, fmt::format("{} bytes, more than the {} MB an image may have", size, kMaxImageBytes >> 20));
-  }
-  std::ifstream in(source.image, std::ios::binary);
-  if (!in) Fail(source, kind, "cannot open for reading");
-  std::vector<uchar> bytes(static_cast<std::size_t>(size));
-  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (in.bad() || static_cast<std::uintmax_t>(in.gcount()) != size) Fail(source, kind, "read error");
+  const std::span<const std::uint8_t> bytes(reinterpret_cast<const std::uint8_t*>(file.data()), file.size());
   if (bytes.empty()) Fail(source, kind, "empty file (0 bytes)");
   if (const std::optional<std::string> problem = CheckImageIntegrity(bytes)) Fail(source, kind, *problem);
   if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) {
@@ -52,7 +45,7 @@ cv::Mat Decode(const ImageSource& source, const char* kind, int flags) {
   }
   cv::Mat image;
   try {
-    image = cv::imdecode(bytes, flags);
+    image = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8UC1, file.data()), flags);
   } catch (const cv::Exception& e) {
     Fail(source, kind, std::string("cannot decode: ") + e.what());
   }

@@ -24,12 +24,11 @@ constexpr std::uintmax_t kMaxSettingsBytes = 1u << 20;  // ORB-SLAM3's largest i
 class SettingsFile {
  public:
   explicit SettingsFile(const std::filesystem::path& path) : path_(path) {
-    if (CheckReadableFile(path, kMaxSettingsBytes, "settings file") == 0) {
-      throw InputError(path, 0, "empty settings file");
-    }
+    const std::string text = ReadFileBytes(path, kMaxSettingsBytes, "a settings file");
+    if (text.empty()) throw InputError(path, 0, "empty settings file");
     YAML::Node root;
     try {
-      root = YAML::Load(ReadFileBytes(path, kMaxSettingsBytes));
+      root = YAML::Load(text);
     } catch (const YAML::DeepRecursion& e) {
       throw InputError(path, e.mark.is_null() ? 0 : e.mark.line + 1,
                        "malformed YAML: lists or maps nested deeper than {} levels", e.depth());

@@ -14,7 +14,7 @@ namespace dlslam::io {
 TextTable ReadTextTable(const std::filesystem::path& path) {
   // Lists and trajectories are far smaller; a device or FIFO (/dev/zero)
   // would be read without end.
-  CheckReadableFile(path, 1ull << 30, "list or trajectory file");
+  CheckReadableFile(path, 1ull << 30, "a list or trajectory file");
   std::ifstream in(path);
   if (!in) throw InputError(path, 0, "cannot open for reading");
   TextTable table;

@@ -11,6 +11,10 @@ namespace dlslam {
 
 namespace {
 
+// Frames whose depth and pose are kept to carry an older mask to the current
+// frame (asynchronous masks are at most a few frames old).
+constexpr std::size_t kRecentFrames = 64;
+
 std::unique_ptr<place::KeyFrameIndex> MakeKeyFrameIndex(const SystemOptions& options) {
   if (!options.relocalization && !options.loop_closing) return nullptr;
   const std::filesystem::path file = place::FindVocabulary(options.vocabulary);
@@ -125,34 +129,33 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   Stopwatch total;
   DynamicInputs inputs = dynamic;
   const long frame_id = counts_.frames;
-  // Asynchronous masks once the map has started: the first keyframe (the
-  // initialisation) is the map's foundation and waits for its own masks.
-  const bool carry = warper_ && tracker_.state() != TrackingState::kNotInitialized;
-  if (segmentation_ && !inputs.semantic_prior && carry) {
-    // Asynchronous: the worker reads the frame after TrackRgbd returns, so
-    // it gets its own copy; a busy network skips the frame.
-    cv::Mat bgr;
+  if (segmentation_ && !inputs.semantic_prior) {
+    // Handed to the semantic thread before ORB extraction. Asynchronous, the
+    // worker may read the frame after TrackRgbd returns: it gets a copy.
+    cv::Mat bgr = colour;
     if (colour.type() == CV_8UC1) {
       cv::cvtColor(colour, bgr, cv::COLOR_GRAY2BGR);
-    } else {
+    } else if (warper_) {
       bgr = colour.clone();
     }
-    segmentation_->TrySubmit(bgr, frame_id);
-    recent_.push_back({frame_id, depth.empty() ? cv::Mat() : depth.clone(), std::nullopt});
-    if (recent_.size() > 64) recent_.pop_front();
-    inputs.semantic_prior = [this, frame_id] { return CarriedMasks(frame_id); };
-  } else if (segmentation_ && !inputs.semantic_prior) {
-    // Handed to the semantic thread before ORB extraction; the dynamic stage
-    // waits for the masks only after it.
-    cv::Mat bgr = colour;
-    if (colour.type() == CV_8UC1) cv::cvtColor(colour, bgr, cv::COLOR_GRAY2BGR);
-    std::shared_future<semantic::SegmentationResult> pending = segmentation_->Submit(bgr, warper_ ? frame_id : -1);
-    if (warper_) recent_.push_back({frame_id, depth.empty() ? cv::Mat() : depth.clone(), std::nullopt});
-    inputs.semantic_prior = [this, pending] {
-      const semantic::SegmentationResult& masks = pending.get();
-      timings_.Add("semantic", masks.seconds * 1e3);
-      return dynamic::SemanticMasks{masks.dynamic_mask, masks.movable_mask};
-    };
+    if (warper_) {
+      recent_.push_back({frame_id, depth.empty() ? cv::Mat() : depth.clone(), std::nullopt});
+      if (recent_.size() > kRecentFrames) recent_.pop_front();
+    }
+    // Asynchronous masks once the map has started: the first keyframe (the
+    // initialisation) is the map's foundation and waits for its own masks.
+    if (warper_ && tracker_.state() != TrackingState::kNotInitialized) {
+      segmentation_->TrySubmit(bgr, frame_id);  // a busy network skips the frame
+      inputs.semantic_prior = [this, frame_id] { return CarriedMasks(frame_id); };
+    } else {
+      // The dynamic stage waits for the masks only after ORB extraction.
+      std::shared_future<semantic::SegmentationResult> pending = segmentation_->Submit(bgr, warper_ ? frame_id : -1);
+      inputs.semantic_prior = [this, pending] {
+        const semantic::SegmentationResult& masks = pending.get();
+        timings_.Add("semantic", masks.seconds * 1e3);
+        return dynamic::SemanticMasks{masks.dynamic_mask, masks.movable_mask};
+      };
+    }
   }
   Stopwatch watch;
   const features::OrbFeatures features = extractor_.Extract(colour);

@@ -26,7 +26,7 @@ std::string Quoted(std::string_view text, std::size_t max_chars) {
 }
 
 InputError::InputError(const std::filesystem::path& file, int line, const std::string& what)
-    : Error(FileLinePrefix(file, line) + what), file_(file), line_(line) {}
+    : Error(FileLinePrefix(file, line) + what), file_(file), line_(line), problem_(what) {}
 
 namespace internal {
 

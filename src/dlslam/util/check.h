@@ -36,10 +36,13 @@ class InputError : public Error {
 
   const std::filesystem::path& file() const { return file_; }
   int line() const { return line_; }
+  // What is wrong, without the "file:line: " in front.
+  const std::string& problem() const { return problem_; }
 
  private:
   std::filesystem::path file_;
   int line_;
+  std::string problem_;
 };
 
 // A path as named in a message: one longer than ~220 characters is cut in
