@@ -141,10 +141,10 @@ RunOutcome RunSequence(const RunArgs& args) {
   if (sequence.ground_truth()) evaluation = EvaluateRun(*sequence.ground_truth(), trajectory);
   const auto& t = stats.timing_ms;
   spdlog::info("posed {}/{} frames (tracked {}, relocalized {}, coasted {}), without a pose {} (lost {}, before "
-               "initialisation {}), {} loops closed, {} keyframes, {} map points",
+               "initialisation {}), {} loops closed, {} keyframes, {} map points, {} jumps refused",
                stats.frames_tracked + stats.frames_coasted, stats.frames, stats.frames_tracked - stats.relocalizations,
                stats.relocalizations, stats.frames_coasted, stats.frames_lost + stats.frames_waiting, stats.frames_lost,
-               stats.frames_waiting, stats.loop.loops_closed, stats.keyframes, stats.map_points);
+               stats.frames_waiting, stats.loop.loops_closed, stats.keyframes, stats.map_points, stats.jumps_refused);
   if (t.count("frame_total")) {
     spdlog::info("time per frame: median {:.1f} ms, p95 {:.1f} ms (ORB {:.1f} ms, tracking {:.1f} ms)",
                  t.at("frame_total").median, t.at("frame_total").p95, t.at("orb_extraction").median,

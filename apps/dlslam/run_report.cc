@@ -89,6 +89,7 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
                        {"none", stats.frames_lost + stats.frames_waiting}};
   j["frames_reextracted"] = stats.frames_reextracted;
   j["relocalizations"] = stats.relocalizations;
+  j["jumps_refused"] = stats.jumps_refused;
   j["loops_closed"] = stats.loop.loops_closed;
   j["frames_waiting"] = stats.frames_waiting;
   j["keyframes"] = stats.keyframes;

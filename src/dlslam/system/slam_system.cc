@@ -64,6 +64,16 @@ const char* ToString(PoseSource source) {
   return "?";
 }
 
+void SemanticThreadOptions::Check() const {
+  segmenter.Check();
+  worker.Check();
+  DLSLAM_CHECK(carry_grow_px >= 0 && carry_grow_px <= max_carry_grow_px && max_carry_grow_px <= 1000,
+               "SemanticThreadOptions: carry growth {} px per frame, at most {} px: need 0 <= growth <= max <= 1000",
+               carry_grow_px, max_carry_grow_px);
+  DLSLAM_CHECK(wait_when_removed_share > 0 && wait_when_removed_share <= 1,
+               "SemanticThreadOptions::wait_when_removed_share {} outside (0, 1]", wait_when_removed_share);
+}
+
 void SystemOptions::Check() const {
   orb.Check();
   static_orb.Check();
@@ -71,6 +81,7 @@ void SystemOptions::Check() const {
   mapping.Check();
   loop.Check();
   dynamic.Check();
+  semantic.Check();
   DLSLAM_CHECK(reextract_removed_share > 0 && reextract_removed_share <= 1,
                "SystemOptions::reextract_removed_share {} outside (0, 1]", reextract_removed_share);
 }
@@ -142,9 +153,11 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
       recent_.push_back({frame_id, depth.empty() ? cv::Mat() : depth.clone(), std::nullopt});
       if (recent_.size() > kRecentFrames) recent_.pop_front();
     }
-    // Asynchronous masks once the map has started: the first keyframe (the
-    // initialisation) is the map's foundation and waits for its own masks.
-    if (warper_ && tracker_.state() != TrackingState::kNotInitialized) {
+    // Asynchronous masks once tracking runs (the first keyframe, the map's
+    // foundation, waits for its own masks) and the view is not crowded.
+    const bool crowded = last_removed_share_ >= options_.semantic.wait_when_removed_share ||
+                         tracker_.state() != TrackingState::kOk;
+    if (warper_ && !crowded) {
       segmentation_->TrySubmit(bgr, frame_id);  // a busy network skips the frame
       inputs.semantic_prior = [this, frame_id] { return CarriedMasks(frame_id); };
     } else {
@@ -163,6 +176,7 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   auto frame = std::make_shared<Frame>(
       Frame::Create(timestamp, features.keypoints, features.descriptors, depth, camera_, pyramid_));
   const DynamicRemoval removal = dynamic_.Process(*frame, depth, inputs);
+  last_removed_share_ = frame->size() > 0 ? static_cast<double>(removal.count) / static_cast<double>(frame->size()) : 0.0;
   if (removal.count > 0) {
     // Tracking and mapping see only static keypoints: extracted again
     // outside the removed regions when many were removed, else the others.
@@ -189,6 +203,10 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     timings_.Add("relocalization_attempt", result.relocalization_ms);
   }
   LogStateChange(result, timestamp);
+  if (result.jump_refused) {
+    ++counts_.jumps_refused;
+    spdlog::debug("t={:.6f}: tracked pose refused, too far from the motion model", timestamp);
+  }
   if (result.new_keyframe) {
     watch = Stopwatch();
     mapper_.Enqueue(result.reference_keyframe);  // blocks only while the queue is full
@@ -242,6 +260,10 @@ dynamic::SemanticMasks SlamSystem::CarriedMasks(long frame_id) {
   if (!latest) return {};  // nothing segmented yet: geometry alone
   const semantic::SegmentationResult& masks = latest->result;
   const long age = frame_id - latest->frame_id;
+  if (latest->frame_id != last_timed_mask_) {  // the network's time, once per segmented frame
+    timings_.Add("semantic", masks.seconds * 1e3);
+    last_timed_mask_ = latest->frame_id;
+  }
   timings_.Add("semantic_age_frames", static_cast<double>(age));
   if (age <= 0) return {masks.dynamic_mask, masks.movable_mask};
   // Frame s's depth and pose, and the prediction of this frame's.

@@ -60,6 +60,16 @@ struct SemanticThreadOptions {
   bool wait_for_masks = true;
   int carry_grow_px = 8;       // [px / frame of age]
   int max_carry_grow_px = 24;  // [px]
+  // Asynchronous only: a frame waits for its own masks after one whose
+  // dynamic stage removed at least this share of its keypoints, or while
+  // tracking is not ok. In a crowd a carried mask is too stale (people walk
+  // 10-20 px a frame) and the few static keypoints left are outnumbered by
+  // the people's edges (Bonn crowd: ATE 0.022-0.14 m carrying always,
+  // 0.016-0.058 m with this at 0.75, 0.016-0.027 m at 0.6 where most
+  // frames wait). (0, 1]; 1 = only when everything was removed.
+  double wait_when_removed_share = 0.75;
+
+  void Check() const;
 };
 
 struct SystemOptions {
@@ -114,6 +124,7 @@ struct RunStats {
   int frames_waiting = 0;   // before initialisation
   int frames_reextracted = 0;  // ORB features extracted again outside the removed regions
   int relocalizations = 0;  // lost -> tracked again through relocalization
+  int jumps_refused = 0;    // tracked poses refused as too far from the motion model (coasted instead)
   std::size_t keyframes = 0;
   std::size_t map_points = 0;
   LocalMappingStats mapping;
@@ -196,11 +207,13 @@ class SlamSystem {
   dynamic::SemanticMasks CarriedMasks(long frame_id);
   std::deque<RecentFrame> recent_;
   std::unique_ptr<dynamic::MaskWarper> warper_;
+  long last_timed_mask_ = -1;  // the newest carried mask's frame, timed as "semantic"
   std::vector<FrameRecord> tracked_;
   std::vector<FramePoseSource> sources_;
   RunStats counts_;
   TrackingState last_state_ = TrackingState::kNotInitialized;  // for the state log
   bool shut_down_ = false;
+  double last_removed_share_ = 0.0;  // of the last frame's keypoints, removed as dynamic
 };
 
 }  // namespace dlslam

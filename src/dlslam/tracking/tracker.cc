@@ -27,6 +27,9 @@ void TrackerOptions::Check() const {
   DLSLAM_CHECK(max_coasting_correction_m > 0 && max_coasting_correction_deg > 0,
                "TrackerOptions::max_coasting_correction {} m, {} deg must be > 0", max_coasting_correction_m,
                max_coasting_correction_deg);
+  DLSLAM_CHECK(max_jump_speed > 0 && max_jump_rate > 0,
+               "TrackerOptions::max_jump_speed {} m/s, max_jump_rate {} deg/s must be > 0", max_jump_speed,
+               max_jump_rate);
   pose.Check();
   relocalization.Check();
 }
@@ -86,6 +89,11 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
     result.inliers = TrackLocalMap(*frame, &pose, &matches, &reference);
     searched_local_map = true;
     ok = result.inliers >= options_.min_local_map_inliers;
+    // Only a tracked camera has a prediction worth trusting.
+    if (ok && state_ == TrackingState::kOk && !result.relocalized && IsJump(pose, frame->timestamp())) {
+      ok = false;
+      result.jump_refused = true;
+    }
   }
   SE3d coasted;
   if (!ok && Coast(pose, searched_local_map ? result.inliers : 0, &coasted)) {
@@ -94,6 +102,7 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
     // The motion model goes on; the last tracked frame's points stay the
     // ones searched next (last_matches_), now around the coasted pose.
     RememberPose(coasted, reference_keyframe_, generation);
+    last_timestamp_ = frame->timestamp();
     result.relocalized = false;
     result.relocalization_keyframe = kNoId;
     result.state = state_;
@@ -126,6 +135,7 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
     result.new_keyframe = true;
   }
   RememberPose(pose, reference_keyframe_, generation);
+  last_timestamp_ = frame->timestamp();
   result.state = state_;
   result.cam_from_world = pose;
   result.reference_keyframe = reference_keyframe_;
@@ -158,6 +168,7 @@ bool Tracker::Initialize(const std::shared_ptr<const Frame>& frame, TrackingResu
   reference_keyframe_ =
       InsertKeyFrame(frame, pose, std::vector<MapPointId>(frame->size(), kNoId), /*all_depth_points=*/true);
   RememberPose(pose, reference_keyframe_, map_->Generation());
+  last_timestamp_ = frame->timestamp();
   velocity_.reset();
   result->cam_from_world = pose;
   result->cam_from_reference = SE3d::Identity();
@@ -230,6 +241,15 @@ int Tracker::TrackLocalMap(const Frame& frame, SE3d* pose, std::vector<MapPointI
 int Tracker::OptimizeAndPrune(const Frame& frame, const std::vector<MapPointView>& points, SE3d* pose,
                               std::vector<MapPointId>* matches) const {
   return dlslam::OptimizeAndPrune(frame, points, options_.pose, pose, matches);
+}
+
+bool Tracker::IsJump(const SE3d& pose, double timestamp) const {
+  constexpr double kMinInterval = 1.0 / 30.0;  // [s]; also for timestamps that do not increase
+  const double dt = std::max(timestamp - last_timestamp_, kMinInterval);
+  const SE3d departure = pose * PredictedPose().Inverse();
+  constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+  return departure.translation().norm() > options_.max_jump_speed * dt ||
+         departure.so3().Log().norm() * kRadToDeg > options_.max_jump_rate * dt;
 }
 
 SE3d Tracker::PredictedPose() const {

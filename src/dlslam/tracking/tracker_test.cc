@@ -168,5 +168,29 @@ TEST(Tracker, CoastsThroughAShortOcclusion) {
   EXPECT_LT((back.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm(), 0.005);
 }
 
+// A frame whose map matches give a pose the camera cannot have reached since
+// the last frame (here: a view from 0.6 m away, as when people walking
+// together are taken for the scene) is refused: it coasts on the motion
+// model, and tracking goes on from the next consistent frame.
+TEST(Tracker, RefusesAPoseTooFarFromTheMotionModel) {
+  const auto scene = testing::LandmarkScene::Room(6000, 9);
+  Map map;
+  Tracker tracker(TrackerOptions(), &map);
+  for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+  const SE3d world_from_first = CamFromWorld(0).Inverse();
+  const SE3d shifted = SE3d(SO3d(), Eigen::Vector3d(0.6, 0.0, 0.0)) * CamFromWorld(10);
+  const TrackingResult jump = tracker.Track(scene.MakeFrame(shifted, 10 / 30.0, 50));
+  EXPECT_TRUE(jump.jump_refused);
+  ASSERT_EQ(jump.state, TrackingState::kCoasting);
+  EXPECT_FALSE(jump.new_keyframe);
+  const SE3d truth10 = CamFromWorld(10) * world_from_first;
+  EXPECT_LT((jump.cam_from_world->Inverse().translation() - truth10.Inverse().translation()).norm(), 0.01);
+  const TrackingResult back = tracker.Track(scene.MakeFrame(CamFromWorld(11), 11 / 30.0, 51));
+  ASSERT_EQ(back.state, TrackingState::kOk);
+  EXPECT_FALSE(back.jump_refused);
+  const SE3d truth11 = CamFromWorld(11) * world_from_first;
+  EXPECT_LT((back.cam_from_world->Inverse().translation() - truth11.Inverse().translation()).norm(), 0.005);
+}
+
 }  // namespace
 }  // namespace dlslam
