@@ -193,6 +193,31 @@ TEST_F(RunCliTest, ReportHasTheDynamicObject) {
   EXPECT_TRUE(j.at("timing_ms").contains("geometry"));
 }
 
+TEST_F(RunCliTest, DenseMapIsAPlyWithoutThePeople) {
+  const CliRun run = Cli(RunArgs(Walk(), "--mode full --semantic-masks gt --dense-map " + Quoted(out_ / "room.ply") +
+                                             " --report " + Quoted(out_ / "r.json")));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json d = Report("r.json").at("dense_map");
+  const std::size_t points = d.at("points");
+  EXPECT_GT(points, 10000u);
+  EXPECT_LT(d.at("people_share").get<double>(), 0.001);  // the synth masks are known
+  std::ifstream ply(out_ / "room.ply", std::ios::binary);
+  std::string line;
+  std::getline(ply, line);
+  EXPECT_EQ(line, "ply");
+  const std::size_t header = [&] {
+    std::string text = "ply\n";
+    while (std::getline(ply, line) && line != "end_header") text += line + "\n";
+    return text.size() + std::string("end_header\n").size();
+  }();
+  EXPECT_EQ(fs::file_size(out_ / "room.ply"), header + 15 * points);
+  // A voxel size out of range is refused like every other flag.
+  const CliRun bad = Cli(RunArgs(Walk(), "--dense-map " + Quoted(out_ / "x.ply") + " --dense-voxel 0"));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_THAT(bad.output, HasSubstr("--dense-voxel"));
+  EXPECT_FALSE(fs::exists(out_ / "x.ply"));
+}
+
 TEST_F(RunCliTest, FolderPriorEqualsTheGroundTruthPrior) {
   // The person masks written as a folder source give the same removal.
   const fs::path masks = out_ / "masks";

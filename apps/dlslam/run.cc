@@ -10,9 +10,11 @@
 #include "cli_checks.h"
 #include "dlslam/data/camera.h"
 #include "commands.h"
+#include "dense_output.h"
 #include "dlslam/io/file_util.h"
 #include "dlslam/io/sequence.h"
 #include "dlslam/io/trajectory_io.h"
+#include "dlslam/synth/actors.h"
 #include "dlslam/util/check.h"
 #include "run_report.h"
 #include "run_sequence.h"
@@ -80,6 +82,11 @@ RunOutcome RunSequence(const RunArgs& args) {
   options.semantic.segmenter.model_path = args.semantic_model;
   options.semantic.worker.segment_every = args.segment_every;
   options.semantic.wait_for_masks = !args.async_masks;
+  options.keep_keyframe_images = !args.dense_map.empty();
+  dense::TsdfOptions dense_options;
+  dense_options.voxel_size = args.dense_voxel;
+  dense_options.truncation = 4 * args.dense_voxel;
+  std::map<double, cv::Mat> keyframe_people;  // ground-truth people of keyframes, for the dense map's statistics
   if (options.semantic.network) {
     spdlog::info("semantic prior: the segmentation network, {}",
                  args.async_masks           ? std::string("asynchronous (newest masks carried to each frame)")
@@ -117,6 +124,9 @@ RunOutcome RunSequence(const RunArgs& args) {
       };
     }
     const TrackingResult r = slam.TrackRgbd(f.color, f.depth, f.timestamp, inputs);
+    if (r.new_keyframe && options.keep_keyframe_images && !f.mask.empty()) {
+      keyframe_people[f.timestamp] = ClassMaskFromLabels(f.mask, synth::kClassPerson);
+    }
     if (r.relocalized) {
       spdlog::info("frame {} (t={:.6f}): tracking {} -> relocalized on keyframe {} ({} inliers)", i, f.timestamp,
                    ToString(last_state), r.relocalization_keyframe, r.inliers);
@@ -158,8 +168,12 @@ RunOutcome RunSequence(const RunArgs& args) {
                    evaluation->rpe->rotation_deg.rmse);
     }
   }
+  std::optional<DenseMapResult> dense_map;
+  if (!args.dense_map.empty()) dense_map = WriteDenseMap(slam, dense_options, keyframe_people, args.dense_map, args.dense_with_dynamic);
   if (!args.report.empty()) {
-    const std::string text = MakeRunReport(stats, evaluation).dump(2) + "\n";
+    nlohmann::ordered_json report = MakeRunReport(stats, evaluation);
+    if (dense_map) report["dense_map"] = DenseMapReport(*dense_map);
+    const std::string text = report.dump(2) + "\n";
     io::WriteFileAtomically(args.report, [&](std::ostream& out) { out << text; });
     spdlog::info("wrote report {}", args.report.string());
   }
@@ -217,6 +231,14 @@ void AddRunCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"lm", "ceres"}));
   cmd->add_option("--max-frames", args->max_frames, "Stop after this many frames (0 = all)")->check(WholeNumber(0, 1000000000));
+  cmd->add_option("--dense-map", args->dense_map,
+                  "Write the dense static model (keyframes' depth fused at their final poses into a TSDF, the "
+                  "removed dynamic regions left out) as a coloured PLY point cloud");
+  cmd->add_option("--dense-voxel", args->dense_voxel, "Voxel size of the dense model [m]")
+      ->capture_default_str()
+      ->check(RealNumber(0.005, 0.5));
+  cmd->add_flag("--dense-with-dynamic", args->dense_with_dynamic,
+                "Fuse the removed dynamic regions into the dense model too (for comparisons)");
   cmd->add_option("--camera", args->sequence_options.camera_preset, "Camera preset: fr1, fr2, fr3, bonn");
   cmd->add_option("--settings", args->sequence_options.settings_file, "ORB-SLAM3-style settings YAML");
   cmd->add_option("--depth-factor", args->sequence_options.depth_factor, "Raw depth units per metre")->check(RealNumber(kMinDepthFactor, kMaxDepthFactor));

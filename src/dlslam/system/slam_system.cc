@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include <opencv2/imgproc.hpp>
 
 #include "dlslam/place/vocabulary_file.h"
@@ -207,6 +209,9 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     ++counts_.jumps_refused;
     spdlog::debug("t={:.6f}: tracked pose refused, too far from the motion model", timestamp);
   }
+  if (result.new_keyframe && options_.keep_keyframe_images) {
+    KeepKeyFrameImages(result.reference_keyframe, timestamp, colour, depth, removal.mask);
+  }
   if (result.new_keyframe) {
     watch = Stopwatch();
     mapper_.Enqueue(result.reference_keyframe);  // blocks only while the queue is full
@@ -283,6 +288,48 @@ dynamic::SemanticMasks SlamSystem::CarriedMasks(long frame_id) {
   }
   timings_.Add("semantic_carry", watch.ElapsedMs());
   return carried;
+}
+
+void SlamSystem::KeepKeyFrameImages(KeyFrameId id, double timestamp, const cv::Mat& colour, const cv::Mat& depth,
+                                    const cv::Mat& removed) {
+  // Forget culled keyframes first (local mapping culls in its thread).
+  std::vector<KeyFrameId> alive;
+  for (const KeyFramePose& k : map_.KeyFramePoses()) alive.push_back(k.id);
+  std::erase_if(keyframe_images_, [&](const auto& entry) {
+    return !std::binary_search(alive.begin(), alive.end(), entry.first);
+  });
+  KeyFrameImages images;
+  images.timestamp = timestamp;
+  if (colour.type() == CV_8UC1) {
+    cv::cvtColor(colour, images.colour, cv::COLOR_GRAY2BGR);
+  } else {
+    images.colour = colour.clone();
+  }
+  if (depth.empty()) {
+    images.depth_mm = cv::Mat(colour.size(), CV_16UC1, cv::Scalar(0));
+  } else {
+    cv::Mat metres = depth.clone();
+    cv::patchNaNs(metres, 0.0);
+    metres.convertTo(images.depth_mm, CV_16UC1, 1000.0);  // saturates beyond 65 m
+  }
+  if (!removed.empty()) images.removed = removed.clone();
+  keyframe_images_[id] = std::move(images);
+}
+
+dense::TsdfVolume SlamSystem::FuseDenseMap(const dense::TsdfOptions& options, const std::function<cv::Mat(double)>& tag,
+                                           bool leave_out_removed) const {
+  DLSLAM_CHECK(options_.keep_keyframe_images, "the dense map needs SystemOptions::keep_keyframe_images");
+  dense::TsdfVolume volume(camera_, options);
+  for (const KeyFramePose& k : map_.KeyFramePoses()) {
+    const auto it = keyframe_images_.find(k.id);
+    if (it == keyframe_images_.end()) continue;
+    const KeyFrameImages& images = it->second;
+    cv::Mat depth;
+    images.depth_mm.convertTo(depth, CV_32FC1, 1e-3);
+    volume.Integrate(k.cam_from_world, depth, images.colour, leave_out_removed ? images.removed : cv::Mat(),
+                     tag ? tag(images.timestamp) : cv::Mat());
+  }
+  return volume;
 }
 
 void SlamSystem::Shutdown() {

@@ -12,12 +12,14 @@
 //   io::WriteTumTrajectory("traj.txt", slam.CameraTrajectory());
 
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
 
 #include "dlslam/data/camera.h"
 #include "dlslam/data/trajectory.h"
+#include "dlslam/dense/tsdf_volume.h"
 #include "dlslam/dynamic/mask_warp.h"
 #include "dlslam/features/orb_extractor.h"
 #include "dlslam/loop/loop_closer.h"
@@ -98,6 +100,10 @@ struct SystemOptions {
   LoopClosingOptions loop;
   // Vocabulary file (.dlv); "" = the shipped one (place::FindVocabulary).
   std::string vocabulary;
+  // Keep every keyframe's colour, depth and removed dynamic regions for the
+  // dense map (FuseDenseMap): ~1.8 MB per 640x480 keyframe while it lives
+  // (culled keyframes are dropped).
+  bool keep_keyframe_images = false;
 
   void Check() const;
 };
@@ -169,6 +175,16 @@ class SlamSystem {
   const std::vector<FramePoseSource>& FrameSources() const { return sources_; }
   RunStats Stats() const;
 
+  // The dense static model: every kept keyframe's depth fused at its
+  // current (optimised) pose, without the regions the dynamic stage removed
+  // (needs options.keep_keyframe_images; call after Shutdown for the final
+  // poses). `tag(timestamp)`, when given, returns a CV_8UC1 mask per
+  // keyframe counted in SurfacePoint::tagged_share (ground-truth people, to
+  // measure how much of them got into the model) or an empty one.
+  // `leave_out_removed` false fuses the removed regions too (for comparisons).
+  dense::TsdfVolume FuseDenseMap(const dense::TsdfOptions& options, const std::function<cv::Mat(double)>& tag = {},
+                                 bool leave_out_removed = true) const;
+
  private:
   struct FrameRecord {
     double timestamp = 0.0;
@@ -208,6 +224,16 @@ class SlamSystem {
   std::deque<RecentFrame> recent_;
   std::unique_ptr<dynamic::MaskWarper> warper_;
   long last_timed_mask_ = -1;  // the newest carried mask's frame, timed as "semantic"
+  // Keyframes' images for the dense map (options.keep_keyframe_images).
+  struct KeyFrameImages {
+    double timestamp = 0.0;
+    cv::Mat colour;   // CV_8UC3 BGR
+    cv::Mat depth_mm; // CV_16UC1 millimetres, 0 = none (half the memory of metres as float)
+    cv::Mat removed;  // CV_8UC1, 255 = removed as dynamic; empty = nothing removed
+  };
+  void KeepKeyFrameImages(KeyFrameId id, double timestamp, const cv::Mat& colour, const cv::Mat& depth,
+                          const cv::Mat& removed);
+  std::map<KeyFrameId, KeyFrameImages> keyframe_images_;
   std::vector<FrameRecord> tracked_;
   std::vector<FramePoseSource> sources_;
   RunStats counts_;
