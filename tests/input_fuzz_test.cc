@@ -32,11 +32,13 @@
 #include "dlslam/io/sequence.h"
 #include "dlslam/io/settings.h"
 #include "dlslam/io/trajectory_io.h"
+#include "dlslam/map/map_file.h"
 #include "dlslam/place/vocabulary_file.h"
 #include "dlslam/place/vocabulary_training.h"
 #include "dlslam/semantic/onnx_segmenter.h"
 #include "dlslam/util/check.h"
 #include "dlslam/util/crc32.h"
+#include "tests/support/landmark_scene.h"
 #include "tests/support/test_data.h"
 
 namespace dlslam {
@@ -388,6 +390,52 @@ TEST_F(InputFuzzTest, Vocabularies) {
   };
   Fuzz(dir_ / "vocab.dlv", valid, false, Cases(300), read);
   Fuzz(dir_ / "resealed.dlv", valid, false, Cases(500), read, "", ResealVocabulary);
+}
+
+// A map of three keyframes of a landmark room, each keypoint with depth a
+// point, seen again by the next keyframe where it sees the same landmark.
+std::string SmallMapFile() {
+  const auto scene = testing::LandmarkScene::Room(1500, 5);
+  Map map;
+  std::vector<std::vector<int>> landmark_of(3);
+  std::vector<KeyFrameId> ids;
+  std::map<int, MapPointId> point_of_landmark;
+  for (int k = 0; k < 3; ++k) {
+    const SE3d pose(SO3d(), Eigen::Vector3d(0.05 * k, 0.0, 0.0));
+    const auto frame = scene.MakeFrame(pose, k / 30.0, 7 + k, 0.5, 8, &landmark_of[k]);
+    ids.push_back(map.AddKeyFrame(frame, pose));
+    for (std::size_t i = 0; i < frame->size(); ++i) {
+      const int landmark = landmark_of[k][i];
+      if (const auto it = point_of_landmark.find(landmark); it != point_of_landmark.end()) {
+        map.AddObservation(it->second, ids.back(), static_cast<int>(i));
+      } else if (const auto p = frame->Unproject(i)) {
+        point_of_landmark[landmark] = map.AddMapPoint(pose.Inverse() * *p, ids.back(), static_cast<int>(i));
+      }
+    }
+    map.UpdateConnections(ids.back());
+  }
+  map.AddLoopEdge(ids.front(), ids.back());
+  return SerializeMap(map.Export(), {scene.camera, scene.pyramid});
+}
+
+TEST_F(InputFuzzTest, MapFiles) {
+  const std::string valid = SmallMapFile();
+  const auto read = [](const fs::path& path) -> std::string {
+    Map map;
+    ParseMap(ReadText(path), path, &map);
+    // Usable: every keyframe resolves, its local map can be searched.
+    for (const KeyFramePose& k : map.KeyFramePoses()) {
+      if (!k.cam_from_world.translation().allFinite()) return "non-finite pose";
+      const auto keyframe = map.GetKeyFrame(k.id);
+      if (!keyframe) return "a listed keyframe is missing";
+      for (const MapPointView& p : map.GetLocalMap(keyframe->points).points) {
+        if (!p.position.allFinite()) return "non-finite point";
+      }
+    }
+    return "";
+  };
+  Fuzz(dir_ / "room.dlmap", valid, false, Cases(300), read);
+  Fuzz(dir_ / "resealed.dlmap", valid, false, Cases(500), read, "", ResealVocabulary);  // the same CRC layout
 }
 
 TEST_F(InputFuzzTest, SegmentationModels) {

@@ -218,6 +218,32 @@ TEST_F(RunCliTest, DenseMapIsAPlyWithoutThePeople) {
   EXPECT_FALSE(fs::exists(out_ / "x.ply"));
 }
 
+TEST_F(RunCliTest, SaveLoadAndLocalizeInAMap) {
+  const std::string map = Quoted(out_ / "walk.dlmap");
+  const CliRun save = Cli(RunArgs(Walk(), "--save-map " + map));
+  ASSERT_EQ(save.exit_code, 0) << save.output;
+  EXPECT_THAT(save.output, HasSubstr("saved map"));
+  const CliRun localize =
+      Cli(RunArgs(Walk(), "--load-map " + map + " --localize --report " + Quoted(out_ / "r.json")));
+  ASSERT_EQ(localize.exit_code, 0) << localize.output;
+  const nlohmann::json j = Report("r.json");
+  EXPECT_EQ(j.at("map_file").at("localization_only"), true);
+  EXPECT_GE(j.at("map_file").at("load_ms").get<double>(), 0.0);
+  EXPECT_EQ(j.at("frames_posed"), 40);
+  // --localize needs a map; a corrupt map names its file and offset.
+  const CliRun alone = Cli(RunArgs(Walk(), "--localize"));
+  EXPECT_EQ(alone.exit_code, 1);
+  EXPECT_THAT(alone.output, HasSubstr("--load-map"));
+  {
+    std::fstream f(out_ / "walk.dlmap", std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(100);
+    f.put('\x7f');
+  }
+  const CliRun corrupt = Cli(RunArgs(Walk(), "--load-map " + map));
+  EXPECT_EQ(corrupt.exit_code, 1);
+  EXPECT_THAT(corrupt.output, AllOf(HasSubstr("walk.dlmap"), HasSubstr("checksum mismatch"), HasSubstr("offset")));
+}
+
 TEST_F(RunCliTest, FolderPriorEqualsTheGroundTruthPrior) {
   // The person masks written as a folder source give the same removal.
   const fs::path masks = out_ / "masks";

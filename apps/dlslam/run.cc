@@ -83,6 +83,8 @@ RunOutcome RunSequence(const RunArgs& args) {
   options.semantic.worker.segment_every = args.segment_every;
   options.semantic.wait_for_masks = !args.async_masks;
   options.keep_keyframe_images = !args.dense_map.empty();
+  if (args.localize && args.load_map.empty()) throw Error("--localize needs a map to localize in: --load-map FILE");
+  options.localization_only = args.localize;
   dense::TsdfOptions dense_options;
   dense_options.voxel_size = args.dense_voxel;
   dense_options.truncation = 4 * args.dense_voxel;
@@ -103,6 +105,12 @@ RunOutcome RunSequence(const RunArgs& args) {
   }
   SlamSystem slam(camera, options);
   StageTimings source_timings;  // the prior source's own time: stage "semantic"
+  double map_load_ms = -1;
+  if (!args.load_map.empty()) {
+    const Stopwatch watch;
+    slam.LoadMap(args.load_map);
+    map_load_ms = watch.ElapsedMs();
+  }
 
   const std::size_t n = args.max_frames ? std::min(args.max_frames, sequence.size()) : sequence.size();
   TrackingState last_state = TrackingState::kNotInitialized;
@@ -168,11 +176,30 @@ RunOutcome RunSequence(const RunArgs& args) {
                    evaluation->rpe->rotation_deg.rmse);
     }
   }
+  std::optional<double> map_save_ms;
+  if (!args.save_map.empty()) {
+    const Stopwatch watch;
+    slam.SaveMap(args.save_map);
+    map_save_ms = watch.ElapsedMs();
+    spdlog::info("saved map {}: {} keyframes, {} map points, {:.1f} MB in {:.0f} ms", args.save_map.string(),
+                 stats.keyframes, stats.map_points, static_cast<double>(std::filesystem::file_size(args.save_map)) / 1e6,
+                 *map_save_ms);
+  }
   std::optional<DenseMapResult> dense_map;
   if (!args.dense_map.empty()) dense_map = WriteDenseMap(slam, dense_options, keyframe_people, args.dense_map, args.dense_with_dynamic);
   if (!args.report.empty()) {
     nlohmann::ordered_json report = MakeRunReport(stats, evaluation);
     if (dense_map) report["dense_map"] = DenseMapReport(*dense_map);
+    if (!args.load_map.empty() || map_save_ms) {
+      nlohmann::ordered_json m;
+      m["loaded"] = args.load_map.empty() ? nullptr : nlohmann::ordered_json(args.load_map.string());
+      m["load_ms"] = map_load_ms >= 0 ? nlohmann::ordered_json(map_load_ms) : nullptr;
+      m["localization_only"] = args.localize;
+      m["saved"] = map_save_ms ? nlohmann::ordered_json(args.save_map.string()) : nullptr;
+      m["save_ms"] = map_save_ms ? nlohmann::ordered_json(*map_save_ms) : nullptr;
+      m["saved_bytes"] = map_save_ms ? nlohmann::ordered_json(std::filesystem::file_size(args.save_map)) : nullptr;
+      report["map_file"] = m;
+    }
     const std::string text = report.dump(2) + "\n";
     io::WriteFileAtomically(args.report, [&](std::ostream& out) { out << text; });
     spdlog::info("wrote report {}", args.report.string());
@@ -231,6 +258,13 @@ void AddRunCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"lm", "ceres"}));
   cmd->add_option("--max-frames", args->max_frames, "Stop after this many frames (0 = all)")->check(WholeNumber(0, 1000000000));
+  cmd->add_option("--save-map", args->save_map,
+                  "Write the map at the end (keyframes, features, map points, covisibility; binary, versioned, "
+                  "checksummed .dlmap) for --load-map");
+  cmd->add_option("--load-map", args->load_map,
+                  "Start in a saved map (relocalizing in it) and continue mapping on top of it; with --localize, "
+                  "track in it without adding keyframes");
+  cmd->add_flag("--localize", args->localize, "Localization only, in the --load-map map: no keyframes added");
   cmd->add_option("--dense-map", args->dense_map,
                   "Write the dense static model (keyframes' depth fused at their final poses into a TSDF, the "
                   "removed dynamic regions left out) as a coloured PLY point cloud");

@@ -32,6 +32,9 @@ struct RunArgs {
   std::string vocabulary;          // --vocabulary; "" = the shipped one
   std::string bundle_solver = "lm";  // local bundle adjustment: "lm" or "ceres"
   std::size_t max_frames = 0;
+  std::filesystem::path save_map;   // --save-map FILE.dlmap
+  std::filesystem::path load_map;   // --load-map FILE.dlmap
+  bool localize = false;            // --localize: track in the loaded map without extending it
   std::filesystem::path dense_map;  // --dense-map: the static model as a PLY point cloud
   double dense_voxel = 0.02;        // --dense-voxel [m]
   bool dense_with_dynamic = false;  // --dense-with-dynamic: fuse the removed regions too

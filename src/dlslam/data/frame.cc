@@ -77,6 +77,22 @@ Frame Frame::Create(double timestamp, const std::vector<cv::KeyPoint>& keypoints
   return f;
 }
 
+Frame Frame::FromKeypoints(double timestamp, std::vector<FrameKeypoint> keypoints, cv::Mat descriptors,
+                           const CameraIntrinsics& camera, const ScalePyramid& pyramid) {
+  camera.Check();
+  pyramid.Check();
+  DLSLAM_CHECK_EQ(descriptors.rows, static_cast<int>(keypoints.size()), "one descriptor per keypoint");
+  DLSLAM_CHECK(keypoints.empty() || descriptors.type() == CV_8UC1, "descriptors must be CV_8UC1");
+  Frame f;
+  f.timestamp_ = timestamp;
+  f.camera_ = camera;
+  f.pyramid_ = pyramid;
+  f.keypoints_ = std::move(keypoints);
+  f.descriptors_ = std::move(descriptors);
+  f.BuildGrid();
+  return f;
+}
+
 void Frame::BuildGrid() {
   // Bounds of the undistorted image: the corners move under distortion.
   min_u_ = 0;

@@ -46,6 +46,11 @@ class Frame {
                       const cv::Mat& depth, const CameraIntrinsics& camera, const ScalePyramid& pyramid,
                       double min_depth = 0.1, double max_depth = 20.0);
 
+  // A frame from keypoints already made (a saved map's keyframes): `keypoints`
+  // as FrameKeypoint (undistorted, with depth), one descriptor row each.
+  static Frame FromKeypoints(double timestamp, std::vector<FrameKeypoint> keypoints, cv::Mat descriptors,
+                             const CameraIntrinsics& camera, const ScalePyramid& pyramid);
+
   double timestamp() const { return timestamp_; }
   const CameraIntrinsics& camera() const { return camera_; }
   const ScalePyramid& pyramid() const { return pyramid_; }

@@ -175,6 +175,15 @@ class Map {
   // Public ReplacePointLocked: `from`'s observations move to `into` and
   // `from` is erased. False when either is gone or from == into.
   bool ReplacePoint(MapPointId from, MapPointId into);
+  // --- Persistence (map_contents.cc) ---
+  // A deep copy of everything, sorted by id (the frames stay shared).
+  MapContents Export() const;
+  // Replaces an empty map by `contents`, after checking that it is one map:
+  // every id it refers to exists, keypoint indices are in range, point and
+  // keyframe views agree, numbers are finite. Throws dlslam::Error naming
+  // the first defect (the map stays empty).
+  void Import(MapContents contents);
+
   // Counts the corrections (ApplyCorrectedPoses, ApplyGlobalBundle) so that
   // tracking notices that the map moved under it.
   std::uint64_t Generation() const;

@@ -55,6 +55,24 @@ struct KeyFrame {
   std::set<KeyFrameId> loop_edges;         // keyframes a loop closure joined it to
 };
 
+// A culled keyframe: frames tracked against it keep a pose through its
+// parent (Map::ResolveCamFromWorld).
+struct CulledKeyFrame {
+  KeyFrameId id = kNoId;
+  KeyFrameId parent = kNoId;
+  SE3d cam_from_parent;
+};
+
+// Everything the map holds, sorted by id: what a map file stores
+// (map/map_file.h) and Map::Export / Map::Import exchange.
+struct MapContents {
+  std::vector<KeyFrame> keyframes;
+  std::vector<MapPoint> points;
+  std::vector<CulledKeyFrame> culled;
+  KeyFrameId next_keyframe_id = 0;
+  MapPointId next_point_id = 0;
+};
+
 // What tracking needs of a map point, copied out of the map.
 struct MapPointView {
   MapPointId id = kNoId;

@@ -3,9 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include <opencv2/imgproc.hpp>
 
+#include "dlslam/map/map_file.h"
 #include "dlslam/place/vocabulary_file.h"
 #include "dlslam/util/check.h"
 
@@ -34,7 +36,54 @@ std::unique_ptr<place::KeyFrameIndex> MakeKeyFrameIndex(const SystemOptions& opt
   return std::make_unique<place::KeyFrameIndex>(std::move(vocabulary), kDirectIndexLevel);
 }
 
+TrackerOptions TrackerFor(const SystemOptions& options) {
+  TrackerOptions tracker = options.tracker;
+  if (options.localization_only) tracker.insert_keyframes = false;
+  return tracker;
+}
+
+bool SameCamera(const CameraIntrinsics& a, const CameraIntrinsics& b) {
+  const auto close = [](double x, double y) { return std::abs(x - y) <= 1e-9 * std::max(1.0, std::abs(x)); };
+  return a.width == b.width && a.height == b.height && close(a.fx, b.fx) && close(a.fy, b.fy) &&
+         close(a.cx, b.cx) && close(a.cy, b.cy) && close(a.k1, b.k1) && close(a.k2, b.k2) && close(a.p1, b.p1) &&
+         close(a.p2, b.p2) && close(a.k3, b.k3) && close(a.bf, b.bf);
+}
+
+std::string Describe(const CameraIntrinsics& c) {
+  return fmt::format("{} {}x{} fx {:.3f} fy {:.3f} cx {:.3f} cy {:.3f} k1 {:g} bf {:g}", Quoted(c.name), c.width,
+                     c.height, c.fx, c.fy, c.cx, c.cy, c.k1, c.bf);
+}
+
 }  // namespace
+
+void SlamSystem::LoadMap(const std::filesystem::path& file) {
+  DLSLAM_CHECK(counts_.frames == 0 && map_.NumKeyFrames() == 0, "LoadMap before the first frame");
+  const Stopwatch watch;
+  Map loaded;
+  const MapFileHeader header = dlslam::LoadMap(file, &loaded);
+  if (!SameCamera(header.camera, camera_)) {
+    throw InputError(file, 0, "the map was made with camera {}; this run's camera is {}", Describe(header.camera),
+                     Describe(camera_));
+  }
+  if (header.pyramid.levels != pyramid_.levels || std::abs(header.pyramid.scale_factor - pyramid_.scale_factor) > 1e-12) {
+    throw InputError(file, 0, "the map's keypoints come from an ORB pyramid of {} levels x {}; this run extracts {} x {}",
+                     header.pyramid.levels, header.pyramid.scale_factor, pyramid_.levels, pyramid_.scale_factor);
+  }
+  map_.Import(loaded.Export());
+  std::vector<KeyFramePose> keyframes = map_.KeyFramePoses();
+  if (keyframes.empty()) throw InputError(file, 0, "the map has no keyframe");
+  if (index_) {
+    for (const KeyFramePose& k : keyframes) index_->Add(k.id, map_.GetKeyFrame(k.id)->frame->descriptors());
+  }
+  tracker_.StartInMap(keyframes.back().id);
+  spdlog::info("loaded map {}: {} keyframes, {} map points in {:.0f} ms", file.string(), keyframes.size(),
+               map_.NumMapPoints(), watch.ElapsedMs());
+}
+
+void SlamSystem::SaveMap(const std::filesystem::path& file) const {
+  DLSLAM_CHECK(shut_down_, "SaveMap after Shutdown");
+  dlslam::SaveMap(map_, {camera_, pyramid_}, file);
+}
 
 KeyFrameHooks SlamSystem::MappingHooks() {
   KeyFrameHooks hooks;
@@ -95,7 +144,7 @@ SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& opti
       static_extractor_(options.static_orb),
       pyramid_{options.orb.n_levels, options.orb.scale_factor},
       index_(MakeKeyFrameIndex(options)),
-      tracker_(options.tracker, &map_, options.relocalization ? index_.get() : nullptr),
+      tracker_(TrackerFor(options), &map_, options.relocalization ? index_.get() : nullptr),
       dynamic_(options.dynamic, camera, &map_, &tracker_, &timings_),
       mapper_(options.mapping, &map_, &timings_, MappingHooks()) {
   camera_.Check();

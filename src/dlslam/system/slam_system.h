@@ -98,6 +98,9 @@ struct SystemOptions {
   // adjustment in the background); shares the vocabulary.
   bool loop_closing = true;
   LoopClosingOptions loop;
+  // Track against the map without ever adding keyframes (a loaded map,
+  // LoadMap; `dlslam run --localize`).
+  bool localization_only = false;
   // Vocabulary file (.dlv); "" = the shipped one (place::FindVocabulary).
   std::string vocabulary;
   // Keep every keyframe's colour, depth and removed dynamic regions for the
@@ -159,6 +162,15 @@ class SlamSystem {
   // that may move; empty = none). Mode orb ignores it.
   TrackingResult TrackRgbd(const cv::Mat& colour, const cv::Mat& depth, double timestamp,
                            const cv::Mat& semantic_prior = cv::Mat());
+  // Loads a map saved by SaveMap before the first frame: tracking starts by
+  // relocalizing in it; with options.localization_only it is never
+  // extended, else mapping goes on on top of it. Throws InputError for a
+  // bad file, or a map made with another camera or ORB pyramid.
+  void LoadMap(const std::filesystem::path& file);
+  // Writes the map (after Shutdown, so that mapping is finished); see
+  // map/map_file.h. Throws InputError when the file cannot be written.
+  void SaveMap(const std::filesystem::path& file) const;
+
   // A frame that could not be read counts as lost.
   void MarkLost(double timestamp);
   // Finishes the semantic thread, local mapping, then loop closing (and a

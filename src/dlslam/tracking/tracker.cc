@@ -143,6 +143,14 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
   return result;
 }
 
+void Tracker::StartInMap(KeyFrameId reference) {
+  DLSLAM_CHECK(state_ == TrackingState::kNotInitialized, "StartInMap before the first frame");
+  state_ = TrackingState::kLost;
+  reference_keyframe_ = reference;
+  last_pose_.reset();
+  velocity_.reset();
+}
+
 bool Tracker::Coast(const SE3d& refined, int inliers, SE3d* pose) const {
   if (coasted_frames_ >= options_.max_coasting_frames || !last_pose_) return false;
   if (state_ != TrackingState::kOk && state_ != TrackingState::kCoasting) return false;
@@ -276,6 +284,7 @@ void Tracker::RememberPose(const SE3d& pose, KeyFrameId reference, std::uint64_t
 
 bool Tracker::NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches,
                               KeyFrameId reference) const {
+  if (!options_.insert_keyframes) return false;
   if (mapping_backlog_ && mapping_backlog_() >= static_cast<std::size_t>(options_.max_mapping_backlog)) return false;
   const int reference_tracked = map_->TrackedPoints(reference, map_->NumKeyFrames() <= 2 ? 2 : 3);
   const int tracked = CountMatches(matches);

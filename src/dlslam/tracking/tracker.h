@@ -81,6 +81,8 @@ struct TrackerOptions {
   // 0.4-0.9 m in one frame. 8 m/s, 360 deg/s: 0.27 m, 12 deg at 30 Hz.
   double max_jump_speed = 8.0;   // [m/s]
   double max_jump_rate = 360.0;  // [deg/s]
+  // false: localization only, the map is never extended (a loaded map).
+  bool insert_keyframes = true;
   // Used when the tracker is given a keyframe index.
   RelocalizerOptions relocalization;
 
@@ -127,6 +129,11 @@ class Tracker {
   // refinement fails. nullopt unless the last frame was tracked. The dynamic
   // stage uses it to test keypoints before the frame is tracked.
   std::optional<SE3d> EstimatePose(const Frame& frame) const;
+
+  // Starts in a map that already exists (a loaded one): the next frame is
+  // relocalized against it instead of starting a new map; `reference`
+  // (e.g. the newest keyframe) is where the reference-keyframe fallback looks.
+  void StartInMap(KeyFrameId reference);
 
   // How many keyframes wait for local mapping; unset = none. Called on the
   // tracking thread for every keyframe decision, so it must be cheap.
