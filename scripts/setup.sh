@@ -13,6 +13,7 @@ PACKAGES=(
   libspdlog-dev libfmt-dev nlohmann-json3-dev libtbb-dev
   libcurl4-openssl-dev libarchive-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  chromium  # the browser test of dlslam run --html (headless)
 )
 # training/ (the segmentation network; its one-batch and model tests run with
 # /usr/bin/python3 and are skipped without these). PyTorch is the bulk of a

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 #include "dlslam/io/sequence.h"
@@ -242,6 +243,67 @@ TEST_F(RunCliTest, SaveLoadAndLocalizeInAMap) {
   const CliRun corrupt = Cli(RunArgs(Walk(), "--load-map " + map));
   EXPECT_EQ(corrupt.exit_code, 1);
   EXPECT_THAT(corrupt.output, AllOf(HasSubstr("walk.dlmap"), HasSubstr("checksum mismatch"), HasSubstr("offset")));
+}
+
+TEST_F(RunCliTest, OneConfigFileForEveryOption) {
+  // The dump alone on stdout, a valid file.
+  const CliRun dump = dlslam::testing::RunShell(Quoted(DLSLAM_CLI_PATH) + " config dump 2>/dev/null");
+  ASSERT_EQ(dump.exit_code, 0);
+  EXPECT_THAT(dump.output, HasSubstr("min_local_map_inliers: 30  # [inliers]"));
+  std::ofstream(out_ / "all.yaml") << dump.output;
+  EXPECT_EQ(Cli("config check " + Quoted(out_ / "all.yaml")).exit_code, 0);
+  // The file sets the options; flags given override it; the report records them.
+  std::ofstream(out_ / "c.yaml") << "dynamic:\n  mode: full\n  fusion:\n    dilation_px: 7\ntracker:\n  max_jump_speed: 6\n";
+  const CliRun run = Cli(RunArgs(Walk(), "--config " + Quoted(out_ / "c.yaml") + " --semantic-masks gt --report " +
+                                             Quoted(out_ / "r.json")));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  nlohmann::json j = Report("r.json");
+  EXPECT_EQ(j.at("options").at("dynamic").at("mode"), "full");
+  EXPECT_EQ(j.at("options").at("dynamic").at("fusion").at("dilation_px"), 7.0);
+  EXPECT_EQ(j.at("options").at("tracker").at("max_jump_speed"), 6.0);
+  EXPECT_EQ(j.at("dynamic").at("mode"), "full");
+  const CliRun flag = Cli(RunArgs(Walk(), "--config " + Quoted(out_ / "c.yaml") + " --mode orb --report " +
+                                              Quoted(out_ / "r.json")));
+  ASSERT_EQ(flag.exit_code, 0) << flag.output;
+  j = Report("r.json");
+  EXPECT_EQ(j.at("options").at("dynamic").at("mode"), "orb");
+  EXPECT_EQ(j.at("options").at("dynamic").at("fusion").at("dilation_px"), 7.0);
+  // A misspelled key: one error line with file:line, exit 1.
+  std::ofstream(out_ / "bad.yaml") << "tracker:\n  max_jump_sped: 6\n";
+  const CliRun bad = Cli(RunArgs(Walk(), "--config " + Quoted(out_ / "bad.yaml")));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_THAT(bad.output, HasSubstr("bad.yaml:2: unknown key 'tracker.max_jump_sped'; did you mean 'tracker.max_jump_speed'?"));
+}
+
+// The HTML report in a real browser: headless Chromium (Debian's chromium,
+// installed by scripts/setup.sh) loads the file, runs its script, and the
+// page says what it drew and which canvases hold pixels; a screenshot is
+// kept in build/test-artifacts/ for people to look at.
+TEST_F(RunCliTest, HtmlReportDrawsInABrowser) {
+  const CliRun which = dlslam::testing::RunShell("command -v chromium 2>/dev/null");
+  if (which.exit_code != 0) GTEST_SKIP() << "chromium is not installed (scripts/setup.sh installs it)";
+  const fs::path page = out_ / "report.html";
+  const CliRun run = Cli(RunArgs(Walk(), "--mode full --semantic-masks gt --html " + Quoted(page)));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string browser =
+      "chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --no-first-run --user-data-dir=" +
+      Quoted(out_ / "profile") + " ";
+  const CliRun dom = dlslam::testing::RunShell(browser + "--dump-dom " + Quoted("file://" + page.string()) + " 2>/dev/null");
+  ASSERT_EQ(dom.exit_code, 0);
+  EXPECT_THAT(dom.output, HasSubstr("frames 40, posed 40; drawn: trajectory, error, map, timings; nonblank: trajectory, error, map"));
+  const fs::path artifacts = fs::path(DLSLAM_CLI_PATH).parent_path().parent_path() / "test-artifacts";
+  fs::create_directories(artifacts);
+  const fs::path shot = artifacts / "html_report.png";
+  fs::remove(shot);
+  const CliRun screenshot = dlslam::testing::RunShell(browser + "--window-size=1400,1300 --screenshot=" + Quoted(shot) +
+                                                      " " + Quoted("file://" + page.string()) + " 2>/dev/null");
+  ASSERT_EQ(screenshot.exit_code, 0);
+  const cv::Mat image = cv::imread(shot.string());
+  ASSERT_FALSE(image.empty()) << shot;
+  cv::Mat grey, ink;
+  cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+  cv::threshold(grey, ink, 200, 255, cv::THRESH_BINARY_INV);
+  EXPECT_GT(cv::countNonZero(ink), 20000);  // text, axes, thousands of map points
 }
 
 TEST_F(RunCliTest, FolderPriorEqualsTheGroundTruthPrior) {

@@ -13,6 +13,7 @@ void AddSynthCommand(CLI::App& app);    // synth.cc: synthetic dynamic RGB-D seq
 void AddDatasetCommand(CLI::App& app);  // dataset.cc: fetch TUM / Bonn sequences
 void AddInfoCommand(CLI::App& app);     // info.cc: what a sequence folder holds
 void AddRunCommand(CLI::App& app);      // run.cc: SLAM on a sequence
+void AddConfigCommand(CLI::App& app);   // config_cmd.cc: config dump / check
 void AddVocabCommand(CLI::App& app);    // vocab.cc: bag-of-words vocabularies (train, info)
 void AddSegmentCommand(CLI::App& app);  // segment.cc: dynamic-object masks from the segmentation network
 void AddBenchCommand(CLI::App& app);    // bench.cc: the whole system timed stage by stage, per mode

@@ -84,6 +84,7 @@ int main(int argc, char** argv) {
 
   dlslam::app::AddDemoCommand(app);
   dlslam::app::AddRunCommand(app);
+  dlslam::app::AddConfigCommand(app);
   dlslam::app::AddInfoCommand(app);
   dlslam::app::AddSynthCommand(app);
   dlslam::app::AddEvalCommand(app);

@@ -10,7 +10,9 @@
 #include "cli_checks.h"
 #include "dlslam/data/camera.h"
 #include "commands.h"
+#include "dlslam/config/config_file.h"
 #include "dense_output.h"
+#include "html_report.h"
 #include "dlslam/io/file_util.h"
 #include "dlslam/io/sequence.h"
 #include "dlslam/io/trajectory_io.h"
@@ -61,47 +63,74 @@ void WritePoseSources(const std::filesystem::path& path, const std::vector<Frame
   });
 }
 
+// The run's options: the defaults, then --config FILE, then the flags given
+// on the command line (without --config every flag counts, with its
+// default, as it always has).
+config::RunOptions RunOptionsFrom(const RunArgs& args) {
+  config::RunOptions run;
+  if (!args.config.empty()) config::LoadConfig(args.config, &run);
+  const auto flag = [&args](const char* name) { return args.config.empty() || args.given.count(name) > 0; };
+  SystemOptions& options = run.system;
+  if (flag("--sequential")) options.sequential = args.sequential;
+  if (flag("--no-relocalization")) options.relocalization = !args.no_relocalization;
+  if (flag("--no-loop")) options.loop_closing = !args.no_loop;
+  if (flag("--no-movables")) options.dynamic.fusion.drop_moving_movables = !args.no_movables;
+  if (flag("--vocabulary")) options.vocabulary = args.vocabulary;
+  if (flag("--bundle-solver")) options.mapping.bundle.solver = ParseBundleSolver(args.bundle_solver);
+  if (flag("--mode")) options.dynamic.mode = ParseDynamicMode(args.mode);
+  if (flag("--geometry-search")) options.dynamic.geometry.search = dynamic::ParseSearchKind(args.geometry_search);
+  if (flag("--fusion")) options.dynamic.fusion.policy = ParseFusion(args.fusion);
+  if (flag("--semantic-model")) options.semantic.segmenter.model_path = args.semantic_model;
+  if (flag("--segment-every")) options.semantic.worker.segment_every = args.segment_every;
+  if (flag("--async-masks")) options.semantic.wait_for_masks = !args.async_masks;
+  if (!args.dense_map.empty()) options.keep_keyframe_images = true;
+  if (args.localize) options.localization_only = true;
+  if (flag("--dense-voxel")) {
+    run.dense.voxel_size = args.dense_voxel;
+    run.dense.truncation = 4 * args.dense_voxel;
+  }
+  // The network unless masks are given (or the file turned it off).
+  if (!args.semantic_masks.empty()) options.semantic.network = false;
+  run.Check();
+  return run;
+}
+
 RunOutcome RunSequence(const RunArgs& args) {
-  SystemOptions options;
-  options.sequential = args.sequential;
-  options.relocalization = !args.no_relocalization;
-  options.loop_closing = !args.no_loop;
-  options.dynamic.fusion.drop_moving_movables = !args.no_movables;
-  options.vocabulary = args.vocabulary;
-  options.mapping.bundle.solver = ParseBundleSolver(args.bundle_solver);
-  options.dynamic.mode = ParseDynamicMode(args.mode);
-  options.dynamic.geometry.search = dynamic::ParseSearchKind(args.geometry_search);
-  options.dynamic.fusion.policy = ParseFusion(args.fusion);
+  if (args.localize && args.load_map.empty()) throw Error("--localize needs a map to localize in: --load-map FILE");
+  config::RunOptions run_options = RunOptionsFrom(args);
+  SystemOptions& options = run_options.system;
   const bool wants_prior = UsesSemanticPrior(options.dynamic.mode);
-  const io::RgbdSequence sequence = io::RgbdSequence::Open(args.sequence, args.sequence_options);
+  io::RgbdSequenceOptions sequence_options = args.sequence_options;
+  // A config file with ORB-SLAM3 camera keys is the camera's settings file too.
+  if (!args.config.empty() && sequence_options.settings_file.empty() && config::HasCameraKeys(args.config)) {
+    sequence_options.settings_file = args.config;
+  }
+  const io::RgbdSequence sequence = io::RgbdSequence::Open(args.sequence, sequence_options);
   const CameraIntrinsics& camera = sequence.camera();
   // The network runs in the library's semantic thread; masks given by the
   // user come through a prior source instead.
   std::unique_ptr<SemanticPriorSource> prior_source;
-  options.semantic.network = wants_prior && args.semantic_masks.empty();
-  options.semantic.segmenter.model_path = args.semantic_model;
-  options.semantic.worker.segment_every = args.segment_every;
-  options.semantic.wait_for_masks = !args.async_masks;
-  options.keep_keyframe_images = !args.dense_map.empty();
-  if (args.localize && args.load_map.empty()) throw Error("--localize needs a map to localize in: --load-map FILE");
-  options.localization_only = args.localize;
-  dense::TsdfOptions dense_options;
-  dense_options.voxel_size = args.dense_voxel;
-  dense_options.truncation = 4 * args.dense_voxel;
+  options.semantic.network = options.semantic.network && wants_prior;
+  const dense::TsdfOptions& dense_options = run_options.dense;
   std::map<double, cv::Mat> keyframe_people;  // ground-truth people of keyframes, for the dense map's statistics
   if (options.semantic.network) {
+    const int every = options.semantic.worker.segment_every;
     spdlog::info("semantic prior: the segmentation network, {}",
-                 args.async_masks           ? std::string("asynchronous (newest masks carried to each frame)")
-                 : args.segment_every == 1 ? std::string("every frame")
-                                           : fmt::format("every {} frames", args.segment_every));
+                 !options.semantic.wait_for_masks ? std::string("asynchronous (newest masks carried to each frame)")
+                 : every == 1                     ? std::string("every frame")
+                                                  : fmt::format("every {} frames", every));
   } else if (wants_prior) {
+    if (args.semantic_masks.empty()) {
+      throw Error(fmt::format("mode {} needs a semantic prior, but the network is off (semantic.network in {}) and "
+                              "no --semantic-masks is given", ToString(options.dynamic.mode), args.config.string()));
+    }
     prior_source = MakeSemanticPriorSource(args.semantic_masks, sequence);
     spdlog::info("semantic prior: {}", prior_source->Describe());
   } else if (!args.semantic_masks.empty()) {
-    spdlog::warn("--semantic-masks is not used in mode {}", args.mode);
+    spdlog::warn("--semantic-masks is not used in mode {}", ToString(options.dynamic.mode));
   }
   if (!wants_prior && !args.semantic_model.empty()) {
-    spdlog::warn("--semantic-model is not used in mode {}", args.mode);
+    spdlog::warn("--semantic-model is not used in mode {}", ToString(options.dynamic.mode));
   }
   SlamSystem slam(camera, options);
   StageTimings source_timings;  // the prior source's own time: stage "semantic"
@@ -190,6 +219,8 @@ RunOutcome RunSequence(const RunArgs& args) {
   if (!args.report.empty()) {
     nlohmann::ordered_json report = MakeRunReport(stats, evaluation);
     if (dense_map) report["dense_map"] = DenseMapReport(*dense_map);
+    report["config_file"] = args.config.empty() ? nullptr : nlohmann::ordered_json(args.config.string());
+    report["options"] = config::ConfigJson(run_options);
     if (!args.load_map.empty() || map_save_ms) {
       nlohmann::ordered_json m;
       m["loaded"] = args.load_map.empty() ? nullptr : nlohmann::ordered_json(args.load_map.string());
@@ -204,6 +235,12 @@ RunOutcome RunSequence(const RunArgs& args) {
     io::WriteFileAtomically(args.report, [&](std::ostream& out) { out << text; });
     spdlog::info("wrote report {}", args.report.string());
   }
+  if (!args.html.empty()) {
+    WriteHtmlReport(args.html, {args.sequence.filename().string().empty() ? args.sequence.parent_path().filename().string()
+                                                                         : args.sequence.filename().string(),
+                                &slam, &stats, &evaluation, config::ConfigJson(run_options)});
+    spdlog::info("wrote {}", args.html.string());
+  }
   return {stats, evaluation};
 }
 
@@ -211,12 +248,18 @@ void AddRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* cmd = app.add_subcommand("run", "Run SLAM on an RGB-D sequence folder (TUM layout)");
   cmd->add_option("--sequence", args->sequence, "Sequence folder (rgb.txt, depth.txt, ...)")->required();
+  cmd->add_option("--config", args->config,
+                  "Every option of every module from one YAML file (dlslam config dump writes one with the "
+                  "defaults); flags given here override it; ORB-SLAM3 camera keys in it set the camera");
   cmd->add_option("--out", args->out, "Camera trajectory output (TUM format)")->capture_default_str();
   cmd->add_option("--keyframes", args->keyframes, "Keyframe trajectory output (TUM format)");
   cmd->add_option("--pose-sources", args->pose_sources,
                   "How each frame's pose was obtained (timestamp tracked|relocalized|coasted|none); default: beside "
                   "--out, traj.txt -> traj.sources.txt");
   cmd->add_option("--report", args->report, "JSON report: frames, tracking, timing, ATE/RPE");
+  cmd->add_option("--html", args->html,
+                  "The run as one self-contained web page: trajectory vs ground truth, error over time, the map "
+                  "in 3-D, timings, options");
   cmd->add_option("--mode", args->mode,
                   "orb: the ORB-SLAM3-style baseline; semantic: drop keypoints on the semantic prior; "
                   "geometry: multi-view geometry finds moving regions; full: both, fused")
@@ -277,7 +320,13 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("--settings", args->sequence_options.settings_file, "ORB-SLAM3-style settings YAML");
   cmd->add_option("--depth-factor", args->sequence_options.depth_factor, "Raw depth units per metre")->check(RealNumber(kMinDepthFactor, kMaxDepthFactor));
   cmd->add_option("--associations", args->sequence_options.associations_file, "RGB-depth association file");
-  cmd->callback([args] { RunSequence(*args); });
+  cmd->callback([args, cmd] {
+    for (const CLI::Option* option : cmd->get_options()) {
+      if (option->count() == 0) continue;
+      for (const std::string& name : option->get_lnames()) args->given.insert("--" + name);
+    }
+    RunSequence(*args);
+  });
 }
 
 }  // namespace dlslam::app

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "dlslam/io/sequence.h"
@@ -12,12 +13,15 @@ namespace dlslam::app {
 
 struct RunArgs {
   std::filesystem::path sequence;
+  std::filesystem::path config;     // --config FILE: every option; the flags in `given` override it
+  std::set<std::string> given;      // the flags given on the command line ("--mode", ...)
   std::filesystem::path out = "trajectory.txt";
   std::filesystem::path keyframes;
   // How each frame's pose was obtained; "" = beside `out` (traj.txt ->
   // traj.sources.txt).
   std::filesystem::path pose_sources;
   std::filesystem::path report;
+  std::filesystem::path html;       // --html: the run as one web page
   std::string mode = "orb";                // orb, semantic, geometry, full
   std::string geometry_search = "ant";     // exhaustive, ant
   std::string fusion = "union";            // union, geometry-confirms, semantic, geometry

@@ -406,6 +406,12 @@ Trajectory SlamSystem::KeyFrameTrajectory() const {
   return out;
 }
 
+std::vector<Eigen::Vector3d> SlamSystem::MapPointPositions() const {
+  std::vector<Eigen::Vector3d> out;
+  for (const MapPoint& p : map_.Export().points) out.push_back(p.position);
+  return out;
+}
+
 RunStats SlamSystem::Stats() const {
   RunStats s = counts_;
   s.keyframes = map_.NumKeyFrames();

@@ -181,6 +181,8 @@ class SlamSystem {
   // current pose and the relative pose at tracking time (as ORB-SLAM does).
   Trajectory CameraTrajectory() const;
   Trajectory KeyFrameTrajectory() const;
+  // Every map point's position (world) now, for views and reports.
+  std::vector<Eigen::Vector3d> MapPointPositions() const;
   // Every frame given to the system, in order, with how its pose was
   // obtained (frames of CameraTrajectory are those with a source other than
   // none, unless their keyframe was culled away).

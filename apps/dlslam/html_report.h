@@ -1,0 +1,35 @@
+#pragma once
+// `dlslam run --html report.html`: the run as one self-contained page (no
+// network, no files beside it): summary, trajectory against ground truth
+// coloured by how each pose was obtained, the ATE over time, the map points
+// and keyframes in 3-D (drag to orbit, wheel to zoom), per-stage timings,
+// the effective options.
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "dlslam/system/slam_system.h"
+#include "run_report.h"
+
+namespace dlslam::app {
+
+struct HtmlReportInput {
+  std::string title;                      // e.g. the sequence folder's name
+  const SlamSystem* slam = nullptr;       // finished (after Shutdown)
+  const RunStats* stats = nullptr;
+  const std::optional<RunEvaluation>* evaluation = nullptr;
+  nlohmann::ordered_json options;         // config::ConfigJson
+};
+
+// The page's data (what the page draws), kept small: positions in mm, at
+// most 30,000 map points.
+nlohmann::ordered_json HtmlReportData(const HtmlReportInput& input);
+// The page itself with `data` embedded.
+std::string HtmlReportPage(const nlohmann::ordered_json& data);
+// Writes the page atomically; throws InputError.
+void WriteHtmlReport(const std::filesystem::path& path, const HtmlReportInput& input);
+
+}  // namespace dlslam::app
