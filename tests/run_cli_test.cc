@@ -306,6 +306,40 @@ TEST_F(RunCliTest, HtmlReportDrawsInABrowser) {
   EXPECT_GT(cv::countNonZero(ink), 20000);  // text, axes, thousands of map points
 }
 
+// The live view in a real browser: a run serves its page on loopback while
+// it goes (and for a few seconds after), headless Chromium loads it and
+// lets the page poll; the page must have drawn the frame's trajectory, the
+// error and the map from the running system.
+TEST_F(RunCliTest, LiveViewServesThePageWhileRunning) {
+  const CliRun which = dlslam::testing::RunShell("command -v chromium 2>/dev/null");
+  if (which.exit_code != 0) GTEST_SKIP() << "chromium is not installed (scripts/setup.sh installs it)";
+  const int port = dlslam::testing::FreeTcpPort();
+  const fs::path log = out_ / "run.log";
+  const std::string url = "http://127.0.0.1:" + std::to_string(port) + "/";
+  const std::string browser =
+      "chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --no-first-run --user-data-dir=" +
+      Quoted(out_ / "profile") + " --virtual-time-budget=3000 ";
+  const fs::path artifacts = fs::path(DLSLAM_CLI_PATH).parent_path().parent_path() / "test-artifacts";
+  fs::create_directories(artifacts);
+  const fs::path shot = artifacts / "live_view.png";
+  fs::remove(shot);
+  // The run in the background, lingering; the browser once the page is up;
+  // then the run is stopped (its frames are done and its files written by then).
+  const std::string script =
+      Quoted(DLSLAM_CLI_PATH) + " " + RunArgs(Walk(), "--mode full --semantic-masks gt --view=" + std::to_string(port) + " --view-linger 60") +
+      " 2>" + Quoted(log) + " & pid=$!; for i in $(seq 1 300); do grep -q 'serving for' " + Quoted(log) +
+      " && break; sleep 0.1; done; " + browser + "--dump-dom " + url + " 2>/dev/null; " + browser +
+      "--window-size=1400,1800 --screenshot=" + Quoted(shot) + " " + url + " >/dev/null 2>&1; kill $pid; wait $pid";
+  const CliRun run = dlslam::testing::RunShell(script);
+  EXPECT_THAT(run.output, HasSubstr("drawn: trajectory, error, map, timings; nonblank: trajectory, error, map"));
+  EXPECT_THAT(run.output, HasSubstr("frames 40, posed 40"));  // every frame done, the page lingers
+  EXPECT_TRUE(fs::exists(shot));
+  EXPECT_TRUE(fs::exists(out_ / "t.txt"));  // written before the view lingers
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(text, HasSubstr("live view on " + url));
+}
+
 TEST_F(RunCliTest, FolderPriorEqualsTheGroundTruthPrior) {
   // The person masks written as a folder source give the same removal.
   const fs::path masks = out_ / "masks";

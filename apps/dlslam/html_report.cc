@@ -29,6 +29,8 @@ td,th{padding:2px 10px;text-align:right;border-bottom:1px solid #eee} th:first-c
 </style></head><body>
 <h1 id="title"></h1><div id="summary"></div><p id="status">drawing...</p>
 <div class="grid">
+<div class="card" id="frame-card" style="display:none"><h2>Current frame: kept (green) and removed (red) keypoints, removed regions</h2>
+<img id="frame" width="640" height="480" alt="current frame"></div>
 <div class="card"><h2>Trajectory (top view)</h2><canvas id="trajectory" width="520" height="420"></canvas>
 <div class="key"><span style="background:#999"></span>ground truth<span style="background:#1565c0"></span>tracked
 <span style="background:#2e7d32"></span>relocalized<span style="background:#ef6c00"></span>coasted</div></div>
@@ -38,27 +40,35 @@ td,th{padding:2px 10px;text-align:right;border-bottom:1px solid #eee} th:first-c
 </div>
 <h2>Options</h2><details><summary>effective options of this run</summary><pre id="options"></pre></details>
 <script>
-const DATA = @DATA@;
+const colour = {t: '#1565c0', r: '#2e7d32', c: '#ef6c00'};
+function extent(points, a) {
+  let lo = Infinity, hi = -Infinity;
+  for (const p of points) { lo = Math.min(lo, p[a]); hi = Math.max(hi, p[a]); }
+  return [lo, hi];
+}
+function axes(points) {  // the two axes with the largest extent
+  const ext = [0, 1, 2].map(a => { const [lo, hi] = extent(points, a); return hi - lo; });
+  return [0, 1, 2].sort((a, b) => ext[b] - ext[a]).slice(0, 2);
+}
+function fit(canvas, points, [a, b]) {
+  const [x0, x1] = extent(points, a), [y0, y1] = extent(points, b);
+  const s = 0.9 * Math.min(canvas.width / Math.max(x1 - x0, 1), canvas.height / Math.max(y1 - y0, 1));
+  return p => [canvas.width / 2 + (p[a] - (x0 + x1) / 2) * s, canvas.height / 2 - (p[b] - (y0 + y1) / 2) * s];
+}
+const EMBEDDED = @DATA@;  // null in the live view, which fetches data.json
 const $ = id => document.getElementById(id);
+let yaw = 0.6, pitch = 0.5, zoom = 1;
+function render(DATA) {
 const drawn = [];
+for (const id of ['trajectory', 'error', 'map']) $(id).getContext('2d').clearRect(0, 0, $(id).width, $(id).height);
 $('title').textContent = 'DLSLAM: ' + DATA.title;
 {
   const s = DATA.summary, parts = [`mode ${s.mode}`, `${s.frames_posed} / ${s.frames} frames posed`];
+  if (s.state) parts.push(`tracking ${s.state}`);
   for (const [k, v] of Object.entries(s.pose_sources)) parts.push(`${k} ${v}`);
   if (s.ate_rmse !== null) parts.push(`ATE RMSE ${(s.ate_rmse * 1000).toFixed(1)} mm`);
   parts.push(`${s.keyframes} keyframes`, `${s.map_points} map points`);
   $('summary').textContent = parts.join(' \u00b7 ');
-}
-const colour = {t: '#1565c0', r: '#2e7d32', c: '#ef6c00'};
-function axes(points) {  // the two axes with the largest extent
-  const ext = [0, 1, 2].map(a => Math.max(...points.map(p => p[a])) - Math.min(...points.map(p => p[a])));
-  return [0, 1, 2].sort((a, b) => ext[b] - ext[a]).slice(0, 2);
-}
-function fit(canvas, points, [a, b]) {
-  const xs = points.map(p => p[a]), ys = points.map(p => p[b]);
-  const x0 = Math.min(...xs), x1 = Math.max(...xs), y0 = Math.min(...ys), y1 = Math.max(...ys);
-  const s = 0.9 * Math.min(canvas.width / Math.max(x1 - x0, 1), canvas.height / Math.max(y1 - y0, 1));
-  return p => [canvas.width / 2 + (p[a] - (x0 + x1) / 2) * s, canvas.height / 2 - (p[b] - (y0 + y1) / 2) * s];
 }
 if (DATA.trajectory.length > 1) {
   const c = $('trajectory'), g = c.getContext('2d');
@@ -75,7 +85,7 @@ if (DATA.trajectory.length > 1) {
 }
 if (DATA.trajectory.some(p => p.error !== undefined)) {
   const c = $('error'), g = c.getContext('2d'), pts = DATA.trajectory.filter(p => p.error !== undefined);
-  const t0 = pts[0].t, t1 = pts[pts.length - 1].t, e1 = Math.max(...pts.map(p => p.error)) || 1;
+  const t0 = pts[0].t, t1 = pts[pts.length - 1].t, e1 = pts.reduce((m, p) => Math.max(m, p.error), 0) || 1;
   const X = t => 50 + (t - t0) / Math.max(t1 - t0, 1e-9) * (c.width - 70), Y = e => c.height - 30 - e / e1 * (c.height - 50);
   g.strokeStyle = '#ccc'; g.strokeRect(50, 20, c.width - 70, c.height - 50);
   g.fillStyle = '#444'; g.fillText(`${(e1 * 1000).toFixed(0)} mm`, 4, 24); g.fillText('0', 36, c.height - 30);
@@ -90,7 +100,6 @@ if (DATA.trajectory.some(p => p.error !== undefined)) {
   if (all.length) {
     const mean = [0, 1, 2].map(a => all.reduce((s, p) => s + p[a], 0) / all.length);
     const radius = Math.sqrt(all.reduce((s, p) => s + (p[0] - mean[0]) ** 2 + (p[1] - mean[1]) ** 2 + (p[2] - mean[2]) ** 2, 0) / all.length) || 1;
-    let yaw = 0.6, pitch = 0.5, zoom = 1;
     const draw = () => {
       g.clearRect(0, 0, c.width, c.height);
       const cy = Math.cos(yaw), sy = Math.sin(yaw), cp = Math.cos(pitch), sp = Math.sin(pitch);
@@ -130,6 +139,24 @@ const nonblank = ['trajectory', 'error', 'map'].filter(id => {
 });
 $('status').textContent = `frames ${DATA.summary.frames}, posed ${DATA.summary.frames_posed}; drawn: ${drawn.join(', ')}; nonblank: ${nonblank.join(', ')}`;
 document.body.dataset.drawn = drawn.join(',');
+}
+if (EMBEDDED) {
+  render(EMBEDDED);
+} else {
+  $('frame-card').style.display = '';
+  const poll = async () => {
+    try {
+      const response = await fetch('data.json', {cache: 'no-store'});
+      render(await response.json());
+      $('frame').src = 'frame.jpg?' + Date.now();
+    } catch (e) {
+      $('status').textContent += ' (the run has ended: the server is gone)';
+      return;
+    }
+    setTimeout(poll, 500);
+  };
+  poll();
+}
 </script></body></html>
 )html";
 

@@ -4,6 +4,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
+#include <thread>
 #include <fstream>
 #include <memory>
 
@@ -13,6 +15,7 @@
 #include "dlslam/config/config_file.h"
 #include "dense_output.h"
 #include "html_report.h"
+#include "live_view.h"
 #include "dlslam/io/file_util.h"
 #include "dlslam/io/sequence.h"
 #include "dlslam/io/trajectory_io.h"
@@ -61,6 +64,18 @@ void WritePoseSources(const std::filesystem::path& path, const std::vector<Frame
            "map) or none\n# timestamp source\n";
     for (const FramePoseSource& s : sources) out << fmt::format("{:.6f} {}\n", s.timestamp, ToString(s.source));
   });
+}
+
+// The ground-truth pose within 20 ms of `t`, if any.
+std::optional<SE3d> PoseNear(const Trajectory& truth, double t) {
+  const auto it = std::lower_bound(truth.begin(), truth.end(), t,
+                                   [](const StampedPose& p, double time) { return p.timestamp < time; });
+  const StampedPose* best = nullptr;
+  for (auto c = it == truth.begin() ? it : std::prev(it); c != truth.end() && c <= it; ++c) {
+    if (!best || std::abs(c->timestamp - t) < std::abs(best->timestamp - t)) best = &*c;
+  }
+  if (!best || std::abs(best->timestamp - t) > 0.02) return std::nullopt;
+  return best->world_from_cam();
 }
 
 // The run's options: the defaults, then --config FILE, then the flags given
@@ -143,6 +158,13 @@ RunOutcome RunSequence(const RunArgs& args) {
 
   const std::size_t n = args.max_frames ? std::min(args.max_frames, sequence.size()) : sequence.size();
   TrackingState last_state = TrackingState::kNotInitialized;
+  std::unique_ptr<LiveView> live;
+  if (args.view_port >= 0) {
+    live = std::make_unique<LiveView>(args.view_port, args.sequence.filename().string(),
+                                      ToString(options.dynamic.mode), &slam);
+    spdlog::info("live view on http://127.0.0.1:{}/", live->port());
+  }
+  int posed = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const io::FrameLoadResult loaded = sequence.TryLoadFrame(i);
     if (!loaded.ok()) {
@@ -172,8 +194,26 @@ RunOutcome RunSequence(const RunArgs& args) {
       spdlog::info("frame {} (t={:.6f}): tracking {} -> {}", i, f.timestamp, ToString(last_state), ToString(r.state));
       last_state = r.state;
     }
+    if (r.cam_from_world) ++posed;
+    if (live) {
+      LiveFrame frame;
+      frame.frame = static_cast<int>(i + 1);
+      frame.posed = posed;
+      frame.state = ToString(r.state);
+      frame.timestamp = f.timestamp;
+      if (r.cam_from_world) {
+        frame.world_from_cam = r.cam_from_world->Inverse();
+        frame.position = frame.world_from_cam->translation();
+      }
+      if (const auto truth = sequence.ground_truth()) frame.ground_truth = PoseNear(*truth, f.timestamp);
+      frame.source = r.relocalized ? 'r' : r.state == TrackingState::kCoasting ? 'c' : 't';
+      // Timings are summarised (sorted) only now and then.
+      const RunStats stats = i % 15 == 0 ? slam.Stats() : RunStats();
+      live->Publish(frame, f.color, slam.LastFrameView(), i % 15 == 0 ? &stats : nullptr);
+    }
     if ((i + 1) % 100 == 0) spdlog::info("{}/{} frames", i + 1, n);
   }
+
   slam.Shutdown();
   const Trajectory trajectory = slam.CameraTrajectory();
   io::WriteTumTrajectory(args.out, trajectory);
@@ -241,6 +281,12 @@ RunOutcome RunSequence(const RunArgs& args) {
                                 &slam, &stats, &evaluation, config::ConfigJson(run_options)});
     spdlog::info("wrote {}", args.html.string());
   }
+  // Everything is written before the view lingers: an interrupt then loses nothing.
+  if (live && args.view_linger_s > 0) {
+    spdlog::info("live view: the run is done and its files written; serving for {} s more", args.view_linger_s);
+    std::this_thread::sleep_for(std::chrono::duration<double>(args.view_linger_s));
+  }
+  if (live) live->Stop();
   return {stats, evaluation};
 }
 
@@ -257,6 +303,12 @@ void AddRunCommand(CLI::App& app) {
                   "How each frame's pose was obtained (timestamp tracked|relocalized|coasted|none); default: beside "
                   "--out, traj.txt -> traj.sources.txt");
   cmd->add_option("--report", args->report, "JSON report: frames, tracking, timing, ATE/RPE");
+  cmd->add_flag("--view{8090}", args->view_port,
+                "Serve the run live on http://127.0.0.1:PORT/ (--view for 8090, or --view=PORT): the frame with kept "
+                "and removed keypoints, trajectory, 3-D map, timings, state")
+      ->check(WholeNumber(1, 65535));
+  cmd->add_option("--view-linger", args->view_linger_s, "Keep the live view up this long after the run [s]")
+      ->check(RealNumber(0, 86400));
   cmd->add_option("--html", args->html,
                   "The run as one self-contained web page: trajectory vs ground truth, error over time, the map "
                   "in 3-D, timings, options");

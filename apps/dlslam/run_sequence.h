@@ -22,6 +22,8 @@ struct RunArgs {
   std::filesystem::path pose_sources;
   std::filesystem::path report;
   std::filesystem::path html;       // --html: the run as one web page
+  int view_port = -1;               // --view[=PORT]: serve the run live; -1 = no
+  double view_linger_s = 0.0;       // --view-linger: keep serving after the run [s]
   std::string mode = "orb";                // orb, semantic, geometry, full
   std::string geometry_search = "ant";     // exhaustive, ant
   std::string fusion = "union";            // union, geometry-confirms, semantic, geometry

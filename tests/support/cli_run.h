@@ -18,4 +18,8 @@ std::string Quoted(const std::filesystem::path& p);
 // popen(command) to the end.
 CliRun RunShell(const std::string& command);
 
+// A TCP port on 127.0.0.1 that was free a moment ago (bound to port 0, then
+// released), for a server the test starts.
+int FreeTcpPort();
+
 }  // namespace dlslam::testing

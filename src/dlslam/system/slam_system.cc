@@ -227,6 +227,11 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   auto frame = std::make_shared<Frame>(
       Frame::Create(timestamp, features.keypoints, features.descriptors, depth, camera_, pyramid_));
   const DynamicRemoval removal = dynamic_.Process(*frame, depth, inputs);
+  last_view_.removed.clear();
+  for (std::size_t i = 0; i < removal.keypoints.size(); ++i) {
+    if (removal.keypoints[i]) last_view_.removed.push_back(features.keypoints[i].pt);
+  }
+  last_view_.removed_mask = removal.mask;
   last_removed_share_ = frame->size() > 0 ? static_cast<double>(removal.count) / static_cast<double>(frame->size()) : 0.0;
   if (removal.count > 0) {
     // Tracking and mapping see only static keypoints: extracted again
@@ -244,6 +249,8 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
       frame = std::make_shared<Frame>(frame->Subset(keep));
     }
   }
+  last_view_.kept.clear();
+  for (const FrameKeypoint& k : frame->keypoints()) last_view_.kept.emplace_back(k.raw_uv.x(), k.raw_uv.y());
   watch = Stopwatch();
   const TrackingResult result = tracker_.Track(frame);
   timings_.Add("tracking", watch.ElapsedMs());

@@ -181,7 +181,17 @@ class SlamSystem {
   // current pose and the relative pose at tracking time (as ORB-SLAM does).
   Trajectory CameraTrajectory() const;
   Trajectory KeyFrameTrajectory() const;
-  // Every map point's position (world) now, for views and reports.
+  // The last frame as tracking saw it, for views: its detected keypoints
+  // kept for tracking and those the dynamic stage removed (pixels of the
+  // colour image), and the removal mask (CV_8UC1, empty when nothing was
+  // removed). Tracking thread only.
+  struct FrameView {
+    std::vector<cv::Point2f> kept;
+    std::vector<cv::Point2f> removed;
+    cv::Mat removed_mask;
+  };
+  const FrameView& LastFrameView() const { return last_view_; }
+  // Every map point's position (world) now, for views and reports (any thread).
   std::vector<Eigen::Vector3d> MapPointPositions() const;
   // Every frame given to the system, in order, with how its pose was
   // obtained (frames of CameraTrajectory are those with a source other than
@@ -253,6 +263,7 @@ class SlamSystem {
   RunStats counts_;
   TrackingState last_state_ = TrackingState::kNotInitialized;  // for the state log
   bool shut_down_ = false;
+  FrameView last_view_;
   double last_removed_share_ = 0.0;  // of the last frame's keypoints, removed as dynamic
 };
 
