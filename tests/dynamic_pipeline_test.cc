@@ -243,7 +243,10 @@ TEST_F(DynamicPipelineTest, TheLibraryRunsTheNetworkInItsSemanticThread) {
   const RunStats stats = slam.Stats();
   ASSERT_EQ(stats.timing_ms.count("semantic"), 1u);
   EXPECT_EQ(stats.timing_ms.at("semantic").count, static_cast<std::size_t>(frames));
-  EXPECT_EQ(stats.frames_tracked, frames);
+  // Threaded: under load a frame may coast while mapping lags; none is lost.
+  EXPECT_EQ(stats.frames_tracked + stats.frames_coasted, frames)
+      << "coasted " << stats.frames_coasted << ", jumps refused " << stats.jumps_refused;
+  EXPECT_GE(stats.frames_tracked, frames - 2) << "jumps refused " << stats.jumps_refused;
 
   // Asynchronous masks: the first frame waits for its own (the map's
   // foundation), the others take the newest finished masks carried to them
@@ -260,16 +263,19 @@ TEST_F(DynamicPipelineTest, TheLibraryRunsTheNetworkInItsSemanticThread) {
     return async.Stats();
   };
   const RunStats async_stats = run_async();
-  EXPECT_EQ(async_stats.frames_tracked, frames);
+  EXPECT_EQ(async_stats.frames_tracked + async_stats.frames_coasted, frames);
   ASSERT_EQ(async_stats.timing_ms.count("semantic_age_frames"), 1u);
-  EXPECT_EQ(async_stats.timing_ms.at("semantic_age_frames").count, static_cast<std::size_t>(frames - 1));
+  // All but the first carried, except after a frame that coasted (it waits).
+  EXPECT_LE(async_stats.timing_ms.at("semantic_age_frames").count, static_cast<std::size_t>(frames - 1));
+  EXPECT_GE(async_stats.timing_ms.at("semantic_age_frames").count,
+            static_cast<std::size_t>(frames - 1 - 2 * async_stats.frames_coasted));
   // The network's time, once per frame it segmented: the first, and those it was free for.
   EXPECT_GE(async_stats.timing_ms.at("semantic").count, 1u);
   EXPECT_LE(async_stats.timing_ms.at("semantic").count, static_cast<std::size_t>(frames));
   // With the crowd rule at a share every frame reaches, every frame waits for its own masks.
   options.semantic.wait_when_removed_share = 1e-6;
   const RunStats crowded = run_async();
-  EXPECT_EQ(crowded.frames_tracked, frames);
+  EXPECT_EQ(crowded.frames_tracked + crowded.frames_coasted, frames);
   EXPECT_EQ(crowded.timing_ms.count("semantic_age_frames"), 0u);
   EXPECT_EQ(crowded.timing_ms.at("semantic").count, static_cast<std::size_t>(frames));
   options.semantic.wait_for_masks = true;
