@@ -175,6 +175,9 @@ class Map {
   // Public ReplacePointLocked: `from`'s observations move to `into` and
   // `from` is erased. False when either is gone or from == into.
   bool ReplacePoint(MapPointId from, MapPointId into);
+  // Every point's position (for views): one short pass under the lock.
+  std::vector<Eigen::Vector3d> PointPositions() const;
+
   // --- Persistence (map_contents.cc) ---
   // A deep copy of everything, sorted by id (the frames stay shared).
   MapContents Export() const;

@@ -22,6 +22,14 @@ bool Finite(const SE3d& pose) {
 
 }  // namespace
 
+std::vector<Eigen::Vector3d> Map::PointPositions() const {
+  std::lock_guard lock(mutex_);
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(points_.size());
+  for (const auto& [id, p] : points_) out.push_back(p.position);
+  return out;
+}
+
 MapContents Map::Export() const {
   std::lock_guard lock(mutex_);
   MapContents out;

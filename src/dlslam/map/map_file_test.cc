@@ -75,6 +75,7 @@ TEST_F(MapFileTest, LoadThenSaveGivesTheSameBytesAndTheSameMap) {
   EXPECT_EQ(SerializeMap(loaded.Export(), header), bytes);
   EXPECT_EQ(loaded.NumKeyFrames(), map_.NumKeyFrames());
   EXPECT_EQ(loaded.NumMapPoints(), map_.NumMapPoints());
+  EXPECT_EQ(loaded.PointPositions().size(), map_.NumMapPoints());
   // The frames behave as the originals: same keypoints found in an area.
   const std::vector<KeyFramePose> poses = map_.KeyFramePoses();
   const auto a = map_.GetKeyFrame(poses.back().id);

@@ -413,11 +413,7 @@ Trajectory SlamSystem::KeyFrameTrajectory() const {
   return out;
 }
 
-std::vector<Eigen::Vector3d> SlamSystem::MapPointPositions() const {
-  std::vector<Eigen::Vector3d> out;
-  for (const MapPoint& p : map_.Export().points) out.push_back(p.position);
-  return out;
-}
+std::vector<Eigen::Vector3d> SlamSystem::MapPointPositions() const { return map_.PointPositions(); }
 
 RunStats SlamSystem::Stats() const {
   RunStats s = counts_;
