@@ -4,6 +4,7 @@
 
 #include "dlslam/io/ply_writer.h"
 #include "dlslam/util/timing.h"
+#include "run_report.h"
 
 namespace dlslam::app {
 
@@ -53,8 +54,8 @@ nlohmann::ordered_json DenseMapReport(const DenseMapResult& result) {
   j["memory_bytes"] = result.memory_bytes;
   j["fuse_ms"] = result.fuse_ms;
   j["extract_ms"] = result.extract_ms;
-  j["people_points"] = result.people_points ? nlohmann::ordered_json(*result.people_points) : nullptr;
-  j["people_share"] = result.people_share ? nlohmann::ordered_json(*result.people_share) : nullptr;
+  j["people_points"] = OrNull(result.people_points);
+  j["people_share"] = OrNull(result.people_share);
   return j;
 }
 

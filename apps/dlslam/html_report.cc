@@ -13,8 +13,6 @@ constexpr std::size_t kMaxMapPoints = 30000;
 
 long Mm(double metres) { return std::lround(metres * 1000.0); }
 
-nlohmann::ordered_json Position(const Eigen::Vector3d& p) { return {Mm(p.x()), Mm(p.y()), Mm(p.z())}; }
-
 // The page: plain canvas drawing, no library. DATA is inserted for
 // @DATA@; the page reports what it drew in #status (the browser test reads it).
 constexpr const char* kPage = R"html(<!doctype html>
@@ -162,6 +160,16 @@ if (EMBEDDED) {
 
 }  // namespace
 
+nlohmann::ordered_json PositionMm(const Eigen::Vector3d& p) { return {Mm(p.x()), Mm(p.y()), Mm(p.z())}; }
+
+nlohmann::ordered_json MapPointsMm(const std::vector<Eigen::Vector3d>& points,
+                                   const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& place) {
+  const std::size_t step = std::max<std::size_t>(1, (points.size() + kMaxMapPoints - 1) / kMaxMapPoints);
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < points.size(); i += step) out.push_back(PositionMm(place(points[i])));
+  return out;
+}
+
 nlohmann::ordered_json HtmlReportData(const HtmlReportInput& input) {
   const RunStats& stats = *input.stats;
   nlohmann::ordered_json d;
@@ -170,10 +178,7 @@ nlohmann::ordered_json HtmlReportData(const HtmlReportInput& input) {
   s["mode"] = ToString(stats.dynamic.mode);
   s["frames"] = stats.frames;
   s["frames_posed"] = stats.frames_tracked + stats.frames_coasted;
-  s["pose_sources"] = {{"tracked", stats.frames_tracked - stats.relocalizations},
-                       {"relocalized", stats.relocalizations},
-                       {"coasted", stats.frames_coasted},
-                       {"none", stats.frames_lost + stats.frames_waiting}};
+  s["pose_sources"] = PoseSourcesReport(stats);
   const std::optional<RunEvaluation>& evaluation = *input.evaluation;
   s["ate_rmse"] = evaluation ? nlohmann::ordered_json(evaluation->ate.error.rmse) : nullptr;
   s["keyframes"] = stats.keyframes;
@@ -192,9 +197,9 @@ nlohmann::ordered_json HtmlReportData(const HtmlReportInput& input) {
   for (const StampedPose& pose : input.slam->CameraTrajectory()) {
     nlohmann::ordered_json e;
     e["t"] = pose.timestamp;
-    e["est"] = Position(place(pose.translation));
+    e["est"] = PositionMm(place(pose.translation));
     if (const auto it = pair_of.find(pose.timestamp); it != pair_of.end()) {
-      e["gt"] = Position(it->second->gt_position);
+      e["gt"] = PositionMm(it->second->gt_position);
       e["error"] = it->second->error;
     }
     const auto src = source_of.find(pose.timestamp);
@@ -203,16 +208,10 @@ nlohmann::ordered_json HtmlReportData(const HtmlReportInput& input) {
   }
   d["trajectory"] = std::move(trajectory);
   nlohmann::ordered_json keyframes = nlohmann::ordered_json::array();
-  for (const StampedPose& k : input.slam->KeyFrameTrajectory()) keyframes.push_back(Position(place(k.translation)));
+  for (const StampedPose& k : input.slam->KeyFrameTrajectory()) keyframes.push_back(PositionMm(place(k.translation)));
   d["keyframes"] = std::move(keyframes);
-  const std::vector<Eigen::Vector3d> points = input.slam->MapPointPositions();
-  const std::size_t step = std::max<std::size_t>(1, (points.size() + kMaxMapPoints - 1) / kMaxMapPoints);
-  nlohmann::ordered_json map_points = nlohmann::ordered_json::array();
-  for (std::size_t i = 0; i < points.size(); i += step) map_points.push_back(Position(place(points[i])));
-  d["map_points"] = std::move(map_points);
-  nlohmann::ordered_json timings = nlohmann::ordered_json::object();
-  for (const auto& [stage, t] : stats.timing_ms) timings[stage] = {{"median", t.median}, {"p95", t.p95}, {"count", t.count}};
-  d["timings"] = std::move(timings);
+  d["map_points"] = MapPointsMm(input.slam->MapPointPositions(), place);
+  d["timings"] = TimingsReport(stats.timing_ms);
   d["options"] = input.options;
   return d;
 }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -23,6 +24,13 @@ struct HtmlReportInput {
   const std::optional<RunEvaluation>* evaluation = nullptr;
   nlohmann::ordered_json options;         // config::ConfigJson
 };
+
+// What the page draws, in its units: a position in mm; at most 30,000 of
+// the map's points (evenly subsampled), each through `place` (into the
+// ground truth's frame) first.
+nlohmann::ordered_json PositionMm(const Eigen::Vector3d& p);
+nlohmann::ordered_json MapPointsMm(const std::vector<Eigen::Vector3d>& points,
+                                   const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& place);
 
 // The page's data (what the page draws), kept small: positions in mm, at
 // most 30,000 map points.

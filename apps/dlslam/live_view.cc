@@ -16,6 +16,7 @@
 
 #include "dlslam/util/check.h"
 #include "html_report.h"
+#include "run_report.h"
 
 namespace dlslam::app {
 
@@ -23,9 +24,6 @@ namespace {
 
 constexpr int kRequestTimeoutMs = 2000;
 constexpr std::size_t kMaxRequestBytes = 8192;
-
-long Mm(double metres) { return std::lround(metres * 1000.0); }
-nlohmann::ordered_json Position(const Eigen::Vector3d& p) { return {Mm(p.x()), Mm(p.y()), Mm(p.z())}; }
 
 void SendAll(int fd, const std::string& bytes) {
   std::size_t sent = 0;
@@ -86,10 +84,7 @@ void LiveView::Publish(const LiveFrame& frame, const cv::Mat& colour, const Slam
   if (!gt_from_est_ && frame.world_from_cam && frame.ground_truth) {
     gt_from_est_ = *frame.ground_truth * frame.world_from_cam->Inverse();
   }
-  if (stats) {
-    timings_ = nlohmann::ordered_json::object();
-    for (const auto& [stage, t] : stats->timing_ms) timings_[stage] = {{"median", t.median}, {"p95", t.p95}, {"count", t.count}};
-  }
+  if (stats) timings_ = TimingsReport(stats->timing_ms);
 }
 
 void LiveView::Serve() {
@@ -175,9 +170,9 @@ std::string LiveView::DataJson() {
     counts[f.source == 'r' ? 1 : f.source == 'c' ? 2 : 0]++;
     nlohmann::ordered_json e;
     e["t"] = f.timestamp;
-    e["est"] = Position(place(*f.position));
+    e["est"] = PositionMm(place(*f.position));
     if (f.ground_truth && gt_from_est_) {
-      e["gt"] = Position(f.ground_truth->translation());
+      e["gt"] = PositionMm(f.ground_truth->translation());
       e["error"] = (place(*f.position) - f.ground_truth->translation()).norm();
     }
     e["source"] = std::string(1, f.source);
@@ -193,12 +188,9 @@ std::string LiveView::DataJson() {
                   {"map_points", points.size()}};
   d["trajectory"] = std::move(trajectory);
   nlohmann::ordered_json kf = nlohmann::ordered_json::array();
-  for (const StampedPose& k : keyframes) kf.push_back(Position(place(k.translation)));
+  for (const StampedPose& k : keyframes) kf.push_back(PositionMm(place(k.translation)));
   d["keyframes"] = std::move(kf);
-  nlohmann::ordered_json map = nlohmann::ordered_json::array();
-  const std::size_t step = std::max<std::size_t>(1, points.size() / 30000 + 1);
-  for (std::size_t i = 0; i < points.size(); i += step) map.push_back(Position(place(points[i])));
-  d["map_points"] = std::move(map);
+  d["map_points"] = MapPointsMm(points, place);
   d["timings"] = timings_;
   d["options"] = nullptr;
   return d.dump();

@@ -149,7 +149,7 @@ RunOutcome RunSequence(const RunArgs& args) {
   }
   SlamSystem slam(camera, options);
   StageTimings source_timings;  // the prior source's own time: stage "semantic"
-  double map_load_ms = -1;
+  std::optional<double> map_load_ms;
   if (!args.load_map.empty()) {
     const Stopwatch watch;
     slam.LoadMap(args.load_map);
@@ -158,10 +158,11 @@ RunOutcome RunSequence(const RunArgs& args) {
 
   const std::size_t n = args.max_frames ? std::min(args.max_frames, sequence.size()) : sequence.size();
   TrackingState last_state = TrackingState::kNotInitialized;
+  // The folder's name, also for "seq/" (filename() of that is empty).
+  const std::string title = (args.sequence / "").parent_path().filename().string();
   std::unique_ptr<LiveView> live;
   if (args.view_port >= 0) {
-    live = std::make_unique<LiveView>(args.view_port, args.sequence.filename().string(),
-                                      ToString(options.dynamic.mode), &slam);
+    live = std::make_unique<LiveView>(args.view_port, title, ToString(options.dynamic.mode), &slam);
     spdlog::info("live view on http://127.0.0.1:{}/", live->port());
   }
   int posed = 0;
@@ -264,10 +265,10 @@ RunOutcome RunSequence(const RunArgs& args) {
     if (!args.load_map.empty() || map_save_ms) {
       nlohmann::ordered_json m;
       m["loaded"] = args.load_map.empty() ? nullptr : nlohmann::ordered_json(args.load_map.string());
-      m["load_ms"] = map_load_ms >= 0 ? nlohmann::ordered_json(map_load_ms) : nullptr;
+      m["load_ms"] = OrNull(map_load_ms);
       m["localization_only"] = args.localize;
       m["saved"] = map_save_ms ? nlohmann::ordered_json(args.save_map.string()) : nullptr;
-      m["save_ms"] = map_save_ms ? nlohmann::ordered_json(*map_save_ms) : nullptr;
+      m["save_ms"] = OrNull(map_save_ms);
       m["saved_bytes"] = map_save_ms ? nlohmann::ordered_json(std::filesystem::file_size(args.save_map)) : nullptr;
       report["map_file"] = m;
     }
@@ -276,9 +277,7 @@ RunOutcome RunSequence(const RunArgs& args) {
     spdlog::info("wrote report {}", args.report.string());
   }
   if (!args.html.empty()) {
-    WriteHtmlReport(args.html, {args.sequence.filename().string().empty() ? args.sequence.parent_path().filename().string()
-                                                                         : args.sequence.filename().string(),
-                                &slam, &stats, &evaluation, config::ConfigJson(run_options)});
+    WriteHtmlReport(args.html, {title, &slam, &stats, &evaluation, config::ConfigJson(run_options)});
     spdlog::info("wrote {}", args.html.string());
   }
   // Everything is written before the view lingers: an interrupt then loses nothing.

@@ -15,8 +15,6 @@ nlohmann::ordered_json StageSummary(const RunStats& stats, const std::string& st
   return {{"median", it->second.median}, {"p95", it->second.p95}, {"max", it->second.max}};
 }
 
-nlohmann::ordered_json OrNull(const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nullptr; }
-
 }  // namespace
 
 nlohmann::ordered_json DynamicReport(const RunStats& stats) {
@@ -76,6 +74,21 @@ nlohmann::ordered_json LoopReport(const LoopClosingStats& loop) {
 
 }  // namespace
 
+nlohmann::ordered_json PoseSourcesReport(const RunStats& stats) {
+  return {{"tracked", stats.frames_tracked - stats.relocalizations},
+          {"relocalized", stats.relocalizations},
+          {"coasted", stats.frames_coasted},
+          {"none", stats.frames_lost + stats.frames_waiting}};
+}
+
+nlohmann::ordered_json TimingsReport(const std::map<std::string, TimingSummary>& timings) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const auto& [stage, s] : timings) {
+    j[stage] = {{"median", s.median}, {"p95", s.p95}, {"max", s.max}, {"count", s.count}};
+  }
+  return j;
+}
+
 nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<RunEvaluation>& evaluation) {
   nlohmann::ordered_json j;
   j["frames"] = stats.frames;
@@ -83,10 +96,7 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
   j["frames_tracked"] = stats.frames_tracked;
   j["frames_coasted"] = stats.frames_coasted;
   j["frames_lost"] = stats.frames_lost;
-  j["pose_sources"] = {{"tracked", stats.frames_tracked - stats.relocalizations},
-                       {"relocalized", stats.relocalizations},
-                       {"coasted", stats.frames_coasted},
-                       {"none", stats.frames_lost + stats.frames_waiting}};
+  j["pose_sources"] = PoseSourcesReport(stats);
   j["frames_reextracted"] = stats.frames_reextracted;
   j["relocalizations"] = stats.relocalizations;
   j["jumps_refused"] = stats.jumps_refused;
@@ -101,11 +111,7 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
                         {"keyframes_culled", stats.mapping.keyframes_culled},
                         {"bundle_outliers", stats.mapping.bundle_outliers}};
   j["loop_closing"] = LoopReport(stats.loop);
-  nlohmann::ordered_json timing;
-  for (const auto& [stage, s] : stats.timing_ms) {
-    timing[stage] = {{"median", s.median}, {"p95", s.p95}, {"max", s.max}, {"count", s.count}};
-  }
-  j["timing_ms"] = timing;
+  j["timing_ms"] = TimingsReport(stats.timing_ms);
   j["dynamic"] = DynamicReport(stats);
   if (evaluation) {
     j["ate"] = eval::ToJson(evaluation->ate);

@@ -31,6 +31,17 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
 // false_positives, false_negatives.
 nlohmann::ordered_json DynamicReport(const RunStats& stats);
 
+// `v` as JSON, or null without a value.
+template <class T>
+nlohmann::ordered_json OrNull(const std::optional<T>& v) {
+  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+}
+
+// How the frames' poses were obtained: {tracked, relocalized, coasted, none}.
+nlohmann::ordered_json PoseSourcesReport(const RunStats& stats);
+// Per stage: {median, p95, count} [ms].
+nlohmann::ordered_json TimingsReport(const std::map<std::string, TimingSummary>& timings);
+
 // Evaluates against ground truth when there is enough overlap; nullopt (and a
 // warning) otherwise.
 std::optional<RunEvaluation> EvaluateRun(const Trajectory& ground_truth, const Trajectory& estimate);

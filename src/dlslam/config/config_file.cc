@@ -24,19 +24,41 @@ constexpr std::uintmax_t kMaxConfigBytes = 1u << 20;
 
 int Line(const YAML::Node& node) { return node.Mark().is_null() ? 0 : node.Mark().line + 1; }
 
-std::size_t EditDistance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-      diagonal = up;
-    }
+// The value of key `path` at `node` in `file`, read strictly: the whole token.
+[[noreturn]] void Fail(const std::filesystem::path& file, const YAML::Node& node, const std::string& path,
+                       const std::string& problem) {
+  throw InputError(file, Line(node), "{}: {}", path, problem);
+}
+
+std::string Scalar(const std::filesystem::path& file, const YAML::Node& node, const std::string& path,
+                   const char* expected) {
+  if (!node.IsScalar()) Fail(file, node, path, fmt::format("expected {}, got a list or section", expected));
+  return node.Scalar();
+}
+
+template <class T>
+T ParseWhole(const std::filesystem::path& file, const YAML::Node& node, const std::string& path) {
+  std::string s = Scalar(file, node, path, "a whole number");
+  if (!s.empty() && s.front() == '+') s.erase(0, 1);
+  T v{};
+  const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || error != std::errc() || end != s.data() + s.size()) {
+    Fail(file, node, path,
+         fmt::format("expected a whole number in [{}, {}], got {}", std::numeric_limits<T>::min(),
+                     std::numeric_limits<T>::max(), Quoted(node.Scalar())));
   }
-  return row[b.size()];
+  return v;
+}
+
+double ParseFinite(const std::filesystem::path& file, const YAML::Node& node, const std::string& path) {
+  std::string s = Scalar(file, node, path, "a number");
+  if (!s.empty() && s.front() == '+') s.erase(0, 1);
+  double v = 0;
+  const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || error != std::errc() || end != s.data() + s.size() || !std::isfinite(v)) {
+    Fail(file, node, path, fmt::format("expected a finite number, got {}", Quoted(node.Scalar())));
+  }
+  return v;
 }
 
 YAML::Node LoadYaml(const std::filesystem::path& file) {
@@ -86,16 +108,7 @@ class Loader final : public OptionVisitor {
   void Value(std::string_view key, std::uint32_t& value, const OptionInfo&) override { Whole(key, value); }
   void Value(std::string_view key, std::size_t& value, const OptionInfo&) override { Whole(key, value); }
   void Value(std::string_view key, double& value, const OptionInfo&) override {
-    Apply(key, [&](const YAML::Node& n, const std::string& path) {
-      std::string s = Scalar(n, path, "a number");
-      if (!s.empty() && s.front() == '+') s.erase(0, 1);
-      double v = 0;
-      const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), v);
-      if (s.empty() || error != std::errc() || end != s.data() + s.size() || !std::isfinite(v)) {
-        Fail(n, path, fmt::format("expected a finite number, got {}", Quoted(n.Scalar())));
-      }
-      value = v;
-    });
+    Apply(key, [&](const YAML::Node& n, const std::string& path) { value = ParseFinite(file_, n, path); });
   }
   void Value(std::string_view key, std::string& value, const OptionInfo&) override {
     Apply(key, [&](const YAML::Node& n, const std::string& path) { value = Scalar(n, path, "text"); });
@@ -104,7 +117,7 @@ class Loader final : public OptionVisitor {
     Apply(key, [&](const YAML::Node& n, const std::string& path) {
       if (!n.IsSequence()) Fail(n, path, "expected a list of whole numbers, e.g. [1, 2]");
       std::vector<int> out;
-      for (const YAML::Node& item : n) out.push_back(ParseWhole<int>(item, path));
+      for (const YAML::Node& item : n) out.push_back(ParseWhole<int>(file_, item, path));
       value = out;
     });
   }
@@ -156,28 +169,14 @@ class Loader final : public OptionVisitor {
     set(*node, Path(key));
   }
   [[noreturn]] void Fail(const YAML::Node& node, const std::string& path, const std::string& problem) const {
-    throw InputError(file_, Line(node), "{}: {}", path, problem);
+    config::Fail(file_, node, path, problem);
   }
   std::string Scalar(const YAML::Node& node, const std::string& path, const char* expected) const {
-    if (!node.IsScalar()) Fail(node, path, fmt::format("expected {}, got a list or section", expected));
-    return node.Scalar();
-  }
-  template <class T>
-  T ParseWhole(const YAML::Node& node, const std::string& path) const {
-    std::string s = Scalar(node, path, "a whole number");
-    if (!s.empty() && s.front() == '+') s.erase(0, 1);
-    T v{};
-    const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (s.empty() || error != std::errc() || end != s.data() + s.size()) {
-      Fail(node, path,
-           fmt::format("expected a whole number in [{}, {}], got {}", std::numeric_limits<T>::min(),
-                       std::numeric_limits<T>::max(), Quoted(node.Scalar())));
-    }
-    return v;
+    return config::Scalar(file_, node, path, expected);
   }
   template <class T>
   void Whole(std::string_view key, T& value) {
-    Apply(key, [&](const YAML::Node& n, const std::string& path) { value = ParseWhole<T>(n, path); });
+    Apply(key, [&](const YAML::Node& n, const std::string& path) { value = ParseWhole<T>(file_, n, path); });
   }
   void CheckUsed(const YAML::Node& map, const std::string& prefix, const std::vector<std::string>& known) const {
     if (!map || !map.IsMap()) return;
@@ -325,28 +324,14 @@ class JsonWriter final : public OptionVisitor {
 // ORB-SLAM3's extractor keys, applied to orb (its values mean the same).
 void ApplyOrbSlam3Extractor(const std::filesystem::path& file, const YAML::Node& root, features::OrbOptions* orb) {
   const auto whole = [&](const char* key, int* value) {
-    const YAML::Node node = root[key];
-    if (!node) return;
-    int v = 0;
-    const std::string text = node.IsScalar() ? node.Scalar() : std::string();
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
-      throw InputError(file, Line(node), "{}: expected a whole number, got {}", key, Quoted(text));
-    }
-    *value = v;
+    if (const YAML::Node node = root[key]) *value = ParseWhole<int>(file, node, key);
   };
   whole("ORBextractor.nFeatures", &orb->n_features);
   whole("ORBextractor.nLevels", &orb->n_levels);
   whole("ORBextractor.iniThFAST", &orb->fast_threshold_initial);
   whole("ORBextractor.minThFAST", &orb->fast_threshold_min);
   if (const YAML::Node node = root["ORBextractor.scaleFactor"]) {
-    const std::string text = node.IsScalar() ? node.Scalar() : std::string();
-    double v = 0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (text.empty() || error != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) {
-      throw InputError(file, Line(node), "ORBextractor.scaleFactor: expected a number, got {}", Quoted(text));
-    }
-    orb->scale_factor = v;
+    orb->scale_factor = ParseFinite(file, node, "ORBextractor.scaleFactor");
   }
 }
 

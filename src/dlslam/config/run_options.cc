@@ -9,6 +9,31 @@ namespace {
 
 using V = OptionVisitor;
 
+// One per options struct, below; declared first so that Section can call any.
+void Visit(features::OrbOptions& o, V& v);
+void Visit(PoseOptimizerOptions& o, V& v);
+void Visit(place::BowMatchOptions& o, V& v);
+void Visit(place::CandidateOptions& o, V& v);
+void Visit(RelocalizerOptions& o, V& v);
+void Visit(TrackerOptions& o, V& v);
+void Visit(TriangulationMatchOptions& o, V& v);
+void Visit(FuseMatchOptions& o, V& v);
+void Visit(BundleAdjusterOptions& o, V& v);
+void Visit(LocalMapperOptions& o, V& v);
+void Visit(dynamic::GeometryOptions& o, V& v);
+void Visit(DynamicOptions& o, V& v);
+void Visit(SemanticThreadOptions& o, V& v);
+void Visit(LoopClosingOptions& o, V& v);
+void Visit(dense::TsdfOptions& o, V& v);
+
+// A nested group: one options struct under `name`.
+template <class Options>
+void Section(V& v, std::string_view name, std::string_view comment, Options& options) {
+  v.Begin(name, comment);
+  Visit(options, v);
+  v.End();
+}
+
 void Visit(features::OrbOptions& o, V& v) {
   v.Value("n_features", o.n_features, {"keypoints", "keypoints wanted over all pyramid levels"});
   v.Value("n_levels", o.n_levels, {"", "pyramid levels (level 0 = the image)"});
@@ -42,9 +67,7 @@ void Visit(place::CandidateOptions& o, V& v) {
 
 void Visit(RelocalizerOptions& o, V& v) {
   v.Value("min_bow_matches", o.min_bow_matches, {"matches", "bag-of-words matches a candidate needs"});
-  v.Begin("bow_match", "bag-of-words descriptor matching");
-  Visit(o.bow_match, v);
-  v.End();
+  Section(v, "bow_match", "bag-of-words descriptor matching", o.bow_match);
   v.Value("ransac_reprojection_px", o.ransac_reprojection_px, {"px", "PnP RANSAC inlier threshold"});
   v.Value("ransac_iterations", o.ransac_iterations, {"", "PnP RANSAC iterations"});
   v.Value("min_first_inliers", o.min_first_inliers, {"inliers", "after RANSAC, before the guided search"});
@@ -52,12 +75,8 @@ void Visit(RelocalizerOptions& o, V& v) {
   v.Value("local_keyframes", o.local_keyframes, {"keyframes", "searched around the candidate"});
   v.Value("min_inliers", o.min_inliers, {"inliers", "for a relocalization to be accepted"});
   v.Value("max_candidates", o.max_candidates, {"keyframes", "candidates tried per frame"});
-  v.Begin("candidates", "keyframe candidates from the index");
-  Visit(o.candidates, v);
-  v.End();
-  v.Begin("pose", "pose optimisation");
-  Visit(o.pose, v);
-  v.End();
+  Section(v, "candidates", "keyframe candidates from the index", o.candidates);
+  Section(v, "pose", "pose optimisation", o.pose);
 }
 
 void Visit(TrackerOptions& o, V& v) {
@@ -80,12 +99,8 @@ void Visit(TrackerOptions& o, V& v) {
   v.Value("max_jump_speed", o.max_jump_speed, {"m/s", "a tracked pose departing faster from the prediction is refused"});
   v.Value("max_jump_rate", o.max_jump_rate, {"deg/s", "a tracked pose turning faster from the prediction is refused"});
   v.Value("insert_keyframes", o.insert_keyframes, {"", "false: never extend the map (see localization_only)"});
-  v.Begin("pose", "pose optimisation");
-  Visit(o.pose, v);
-  v.End();
-  v.Begin("relocalization", "relocalization of a lost camera");
-  Visit(o.relocalization, v);
-  v.End();
+  Section(v, "pose", "pose optimisation", o.pose);
+  Section(v, "relocalization", "relocalization of a lost camera", o.relocalization);
 }
 
 void Visit(TriangulationMatchOptions& o, V& v) {
@@ -128,22 +143,16 @@ void Visit(LocalMapperOptions& o, V& v) {
   v.Value("chi2_mono", o.triangulate.chi2_mono, {"px^2", "reprojection threshold without depth"});
   v.Value("chi2_stereo", o.triangulate.chi2_stereo, {"px^2", "reprojection threshold with depth"});
   v.Value("scale_consistency", o.triangulate.scale_consistency, {"", "distance ratio vs pyramid scale ratio allowed"});
-  v.Begin("match", "epipolar matching");
-  Visit(o.triangulate.match, v);
-  v.End();
+  Section(v, "match", "epipolar matching", o.triangulate.match);
   v.End();
   v.Value("fusion", o.fusion, {"", "fuse duplicated points across neighbours"});
   v.Begin("fuse", "point fusion");
   v.Value("neighbours", o.fuse.neighbours, {"keyframes", "covisible keyframes"});
   v.Value("second_neighbours", o.fuse.second_neighbours, {"keyframes", "their neighbours too"});
-  v.Begin("match", "projection matching");
-  Visit(o.fuse.match, v);
-  v.End();
+  Section(v, "match", "projection matching", o.fuse.match);
   v.End();
   v.Value("bundle_adjustment", o.bundle_adjustment, {"", "local bundle adjustment per keyframe"});
-  v.Begin("bundle", "local bundle adjustment");
-  Visit(o.bundle, v);
-  v.End();
+  Section(v, "bundle", "local bundle adjustment", o.bundle);
 }
 
 void Visit(dynamic::GeometryOptions& o, V& v) {
@@ -195,9 +204,7 @@ void Visit(dynamic::GeometryOptions& o, V& v) {
 void Visit(DynamicOptions& o, V& v) {
   v.Enum("mode", o.mode, {"orb", "semantic", "geometry", "full"}, [](DynamicMode m) { return std::string(ToString(m)); },
          ParseDynamicMode, {"", "what removes moving keypoints: nothing, the network, geometry, both"});
-  v.Begin("geometry", "multi-view geometry");
-  Visit(o.geometry, v);
-  v.End();
+  Section(v, "geometry", "multi-view geometry", o.geometry);
   v.Begin("fusion", "how the semantic prior and geometry combine");
   v.Enum("policy", o.fusion.policy, {"union", "geometry_confirms", "semantic", "geometry"},
          [](dynamic::FusionPolicy p) { return dynamic::ToString(p); }, dynamic::ParseFusionPolicy, {"", "mode full: prior or geometry, prior kept where geometry sees it still, ..."});
@@ -242,13 +249,9 @@ void Visit(LoopClosingOptions& o, V& v) {
   LoopDetectorOptions& d = o.detection;
   v.Value("min_keyframes_between_loops", d.min_keyframes_between_loops, {"keyframes", "after the last loop"});
   v.Value("min_consistency", d.min_consistency, {"keyframes", "consecutive detections of the same place"});
-  v.Begin("candidates", "keyframe candidates from the index");
-  Visit(d.candidates, v);
-  v.End();
+  Section(v, "candidates", "keyframe candidates from the index", d.candidates);
   v.Value("min_bow_matches", d.min_bow_matches, {"matches", "bag-of-words matches a candidate needs"});
-  v.Begin("bow_match", "bag-of-words descriptor matching");
-  Visit(d.bow_match, v);
-  v.End();
+  Section(v, "bow_match", "bag-of-words descriptor matching", d.bow_match);
   v.Begin("ransac", "3D-3D rigid RANSAC");
   v.Value("max_iterations", d.ransac.max_iterations, {"", "iterations"});
   v.Value("confidence", d.ransac.confidence, {"", "stop when this sure"});
@@ -259,17 +262,13 @@ void Visit(LoopClosingOptions& o, V& v) {
   v.Value("loop_group_keyframes", d.loop_group_keyframes, {"keyframes", "around the candidate searched"});
   v.Value("guided_search_radius", d.guided_search_radius, {"px", "projection search with the RANSAC pose"});
   v.Value("min_inliers", d.min_inliers, {"inliers", "for a loop to be accepted"});
-  v.Begin("pose", "pose optimisation");
-  Visit(d.pose, v);
-  v.End();
+  Section(v, "pose", "pose optimisation", d.pose);
   v.Value("seed", d.seed, {"", "RANSAC's random seed"});
   v.End();
   v.Begin("correction", "loop correction");
   v.Value("min_covisibility", o.correction.min_covisibility, {"points", "essential-graph covisibility edges"});
   v.Value("loop_group_keyframes", o.correction.loop_group_keyframes, {"keyframes", "fused on both sides"});
-  v.Begin("fuse", "loop fusion matching");
-  Visit(o.correction.fuse, v);
-  v.End();
+  Section(v, "fuse", "loop fusion matching", o.correction.fuse);
   v.Begin("pose_graph", "essential-graph optimisation (Ceres)");
   v.Value("max_iterations", o.correction.pose_graph.max_iterations, {"", "iterations"});
   v.Value("function_tolerance", o.correction.pose_graph.function_tolerance, {"", "Ceres tolerance"});
@@ -279,9 +278,7 @@ void Visit(LoopClosingOptions& o, V& v) {
   v.End();
   v.End();
   v.Value("global_bundle_adjustment", o.global_bundle_adjustment, {"", "after each loop, in the background"});
-  v.Begin("global_bundle", "global bundle adjustment");
-  Visit(o.global_bundle, v);
-  v.End();
+  Section(v, "global_bundle", "global bundle adjustment", o.global_bundle);
   v.Value("queue_capacity", o.queue_capacity, {"keyframes", "waiting for loop detection"});
 }
 
@@ -304,37 +301,21 @@ void RunOptions::Check() const {
 
 void VisitOptions(RunOptions& options, OptionVisitor& v) {
   SystemOptions& s = options.system;
-  v.Begin("orb", "ORB extraction");
-  Visit(s.orb, v);
-  v.End();
-  v.Begin("static_orb", "ORB re-extraction outside the removed regions");
-  Visit(s.static_orb, v);
-  v.End();
+  Section(v, "orb", "ORB extraction", s.orb);
+  Section(v, "static_orb", "ORB re-extraction outside the removed regions", s.static_orb);
   v.Value("reextract_removed_share", s.reextract_removed_share, {"", "re-extract when this share of keypoints was removed"});
-  v.Begin("tracker", "frame-to-map tracking");
-  Visit(s.tracker, v);
-  v.End();
-  v.Begin("mapping", "local mapping");
-  Visit(s.mapping, v);
-  v.End();
-  v.Begin("dynamic", "moving objects: modes, geometry, fusion");
-  Visit(s.dynamic, v);
-  v.End();
-  v.Begin("semantic", "the semantic thread");
-  Visit(s.semantic, v);
-  v.End();
+  Section(v, "tracker", "frame-to-map tracking", s.tracker);
+  Section(v, "mapping", "local mapping", s.mapping);
+  Section(v, "dynamic", "moving objects: modes, geometry, fusion", s.dynamic);
+  Section(v, "semantic", "the semantic thread", s.semantic);
   v.Value("sequential", s.sequential, {"", "local mapping inline: reproducible bit for bit"});
   v.Value("relocalization", s.relocalization, {"", "relocalize a lost camera"});
   v.Value("loop_closing", s.loop_closing, {"", "close loops"});
-  v.Begin("loop", "loop closing");
-  Visit(s.loop, v);
-  v.End();
+  Section(v, "loop", "loop closing", s.loop);
   v.Value("vocabulary", s.vocabulary, {"", "bag-of-words vocabulary (.dlv); empty = the shipped one"});
   v.Value("keep_keyframe_images", s.keep_keyframe_images, {"", "keep keyframe images for the dense map"});
   v.Value("localization_only", s.localization_only, {"", "never add keyframes (a loaded map)"});
-  v.Begin("dense", "the dense map");
-  Visit(options.dense, v);
-  v.End();
+  Section(v, "dense", "the dense map", options.dense);
 }
 
 }  // namespace dlslam::config

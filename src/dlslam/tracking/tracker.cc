@@ -1,12 +1,17 @@
 #include "dlslam/tracking/tracker.h"
 
 #include <algorithm>
+#include <numbers>
 
 #include "dlslam/tracking/matched_pose.h"
 #include "dlslam/util/check.h"
 #include "dlslam/util/timing.h"
 
 namespace dlslam {
+
+namespace {
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+}  // namespace
 
 void TrackerOptions::Check() const {
   DLSLAM_CHECK_GT(min_init_points, 0);
@@ -158,7 +163,6 @@ bool Tracker::Coast(const SE3d& refined, int inliers, SE3d* pose) const {
   *pose = predicted;
   if (inliers < options_.min_coasting_inliers) return true;
   const SE3d correction = refined * predicted.Inverse();
-  constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
   if (correction.translation().norm() <= options_.max_coasting_correction_m &&
       correction.so3().Log().norm() * kRadToDeg <= options_.max_coasting_correction_deg) {
     *pose = refined;
@@ -255,7 +259,6 @@ bool Tracker::IsJump(const SE3d& pose, double timestamp) const {
   constexpr double kMinInterval = 1.0 / 30.0;  // [s]; also for timestamps that do not increase
   const double dt = std::max(timestamp - last_timestamp_, kMinInterval);
   const SE3d departure = pose * PredictedPose().Inverse();
-  constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
   return departure.translation().norm() > options_.max_jump_speed * dt ||
          departure.so3().Log().norm() * kRadToDeg > options_.max_jump_rate * dt;
 }

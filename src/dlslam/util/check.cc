@@ -1,6 +1,8 @@
 #include "dlslam/util/check.h"
 
+#include <algorithm>
 #include <string_view>
+#include <vector>
 
 namespace dlslam {
 
@@ -27,6 +29,21 @@ std::string Quoted(std::string_view text, std::size_t max_chars) {
 
 InputError::InputError(const std::filesystem::path& file, int line, const std::string& what)
     : Error(FileLinePrefix(file, line) + what), file_(file), line_(line), problem_(what) {}
+
+std::size_t EditDistance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
 
 namespace internal {
 

@@ -53,6 +53,10 @@ std::string ShortPath(const std::filesystem::path& file);
 // echo a user's token, and a 100 KB token must not become a 100 KB line.
 std::string Quoted(std::string_view text, std::size_t max_chars = 60);
 
+// Levenshtein distance (insertions, deletions, substitutions), for the
+// "did you mean" of an unknown name.
+std::size_t EditDistance(std::string_view a, std::string_view b);
+
 namespace internal {
 
 inline std::string FormatMessage() { return {}; }

@@ -50,4 +50,12 @@ TEST(InputError, NamesFileAndLine) {
 }
 
 }  // namespace
+TEST(EditDistance, CountsInsertionsDeletionsAndSubstitutions) {
+  EXPECT_EQ(EditDistance("", ""), 0u);
+  EXPECT_EQ(EditDistance("abc", ""), 3u);
+  EXPECT_EQ(EditDistance("kitten", "sitting"), 3u);
+  EXPECT_EQ(EditDistance("tracker", "trackr"), 1u);
+  EXPECT_EQ(EditDistance("walking_xyz", "walking_xyz"), 0u);
+}
+
 }  // namespace dlslam
