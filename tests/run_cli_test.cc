@@ -97,6 +97,10 @@ TEST_F(RunCliTest, EveryBadArgumentIsOneErrorLineAndExitStatusOne) {
       {"bench --camera-hz inf", "--camera-hz: expected a number in [0.1, 1000], got 'inf'"},
       {"synth --out '' --frames 3", "--out: empty value"},
       {"vocab train --images . --out v.dlv --threads 100000", "--threads: expected a whole number in 0..256"},
+      {RunArgs(Walk(), "--view=70000"), "--view: expected a whole number in 1..65535, got '70000'"},
+      {RunArgs(Walk(), "--view-linger -1"), "--view-linger: expected a number in [0, 86400], got '-1'"},
+      {RunArgs(Walk(), "--config /nonexistent/c.yaml"), "/nonexistent/c.yaml: file not found"},
+      {"config check /nonexistent/c.yaml", "/nonexistent/c.yaml: file not found"},
       {"nosuchcmd", "unknown command 'nosuchcmd'"},
       {"run --sequence " + std::string(300, 'a'), "File name too long"},
   };
