@@ -31,14 +31,15 @@ td,th{padding:2px 10px;text-align:right;border-bottom:1px solid #eee} th:first-c
 <img id="frame" width="640" height="480" alt="current frame"></div>
 <div class="card"><h2>Trajectory (top view)</h2><canvas id="trajectory" width="520" height="420"></canvas>
 <div class="key"><span style="background:#999"></span>ground truth<span style="background:#1565c0"></span>tracked
-<span style="background:#2e7d32"></span>relocalized<span style="background:#ef6c00"></span>coasted</div></div>
+<span style="background:#2e7d32"></span>relocalized<span style="background:#ef6c00"></span>coasted
+<span style="background:#8e24aa"></span>new map</div></div>
 <div class="card"><h2>Absolute trajectory error</h2><canvas id="error" width="520" height="420"></canvas></div>
 <div class="card"><h2>Map: points and keyframes (drag to orbit, wheel to zoom)</h2><canvas id="map" width="700" height="520"></canvas></div>
 <div class="card"><h2>Time per stage</h2><table id="timings"></table></div>
 </div>
 <h2>Options</h2><details><summary>effective options of this run</summary><pre id="options"></pre></details>
 <script>
-const colour = {t: '#1565c0', r: '#2e7d32', c: '#ef6c00'};
+const colour = {t: '#1565c0', r: '#2e7d32', c: '#ef6c00', n: '#8e24aa'};
 function extent(points, a) {
   let lo = Infinity, hi = -Infinity;
   for (const p of points) { lo = Math.min(lo, p[a]); hi = Math.max(hi, p[a]); }
@@ -187,7 +188,7 @@ nlohmann::ordered_json HtmlReportData(const HtmlReportInput& input) {
   const auto place = [&](const Eigen::Vector3d& p) { return evaluation ? evaluation->ate.gt_from_est.Apply(p) : p; };
   std::map<double, char> source_of;
   for (const FramePoseSource& f : input.slam->FrameSources()) {
-    source_of[f.timestamp] = f.source == PoseSource::kRelocalized ? 'r' : f.source == PoseSource::kCoasted ? 'c' : 't';
+    source_of[f.timestamp] = PoseSourceLetter(f.source);
   }
   std::map<double, const eval::AtePair*> pair_of;
   if (evaluation) {

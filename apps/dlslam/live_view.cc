@@ -163,11 +163,11 @@ std::string LiveView::DataJson() {
   nlohmann::ordered_json d;
   d["title"] = title_;
   const LiveFrame last = frames_.empty() ? LiveFrame{} : frames_.back();
-  int counts[3] = {0, 0, 0};
+  int counts[4] = {0, 0, 0, 0};
   nlohmann::ordered_json trajectory = nlohmann::ordered_json::array();
   for (const LiveFrame& f : frames_) {
     if (!f.position) continue;
-    counts[f.source == 'r' ? 1 : f.source == 'c' ? 2 : 0]++;
+    counts[f.source == 'r' ? 1 : f.source == 'c' ? 2 : f.source == 'n' ? 3 : 0]++;
     nlohmann::ordered_json e;
     e["t"] = f.timestamp;
     e["est"] = PositionMm(place(*f.position));
@@ -182,7 +182,7 @@ std::string LiveView::DataJson() {
                   {"frames", last.frame},
                   {"frames_posed", last.posed},
                   {"state", last.state},
-                  {"pose_sources", {{"tracked", counts[0]}, {"relocalized", counts[1]}, {"coasted", counts[2]}}},
+                  {"pose_sources", {{"tracked", counts[0]}, {"relocalized", counts[1]}, {"coasted", counts[2]}, {"new_map", counts[3]}}},
                   {"ate_rmse", nullptr},
                   {"keyframes", keyframes.size()},
                   {"map_points", points.size()}};

@@ -207,7 +207,7 @@ RunOutcome RunSequence(const RunArgs& args) {
         frame.position = frame.world_from_cam->translation();
       }
       if (const auto truth = sequence.ground_truth()) frame.ground_truth = PoseNear(*truth, f.timestamp);
-      frame.source = r.relocalized ? 'r' : r.state == TrackingState::kCoasting ? 'c' : 't';
+      frame.source = PoseSourceLetter(slam.FrameSources().back().source);
       // Timings are summarised (sorted) only now and then.
       const RunStats stats = i % 15 == 0 ? slam.Stats() : RunStats();
       live->Publish(frame, f.color, slam.LastFrameView(), i % 15 == 0 ? &stats : nullptr);
@@ -228,11 +228,14 @@ RunOutcome RunSequence(const RunArgs& args) {
   std::optional<RunEvaluation> evaluation;
   if (sequence.ground_truth()) evaluation = EvaluateRun(*sequence.ground_truth(), trajectory);
   const auto& t = stats.timing_ms;
-  spdlog::info("posed {}/{} frames (tracked {}, relocalized {}, coasted {}), without a pose {} (lost {}, before "
-               "initialisation {}), {} loops closed, {} keyframes, {} map points, {} jumps refused",
-               stats.frames_tracked + stats.frames_coasted, stats.frames, stats.frames_tracked - stats.relocalizations,
-               stats.relocalizations, stats.frames_coasted, stats.frames_lost + stats.frames_waiting, stats.frames_lost,
-               stats.frames_waiting, stats.loop.loops_closed, stats.keyframes, stats.map_points, stats.jumps_refused);
+  spdlog::info("posed {}/{} frames (tracked {}, relocalized {}, coasted {}, in a new map {}), without a pose {} (lost "
+               "{}, before initialisation {}), {} loops closed, {} new maps ({} merged), {} keyframes, {} map points, "
+               "{} jumps refused",
+               stats.frames_tracked + stats.frames_coasted, stats.frames,
+               stats.frames_tracked - stats.relocalizations - stats.frames_new_map, stats.relocalizations,
+               stats.frames_coasted, stats.frames_new_map, stats.frames_lost + stats.frames_waiting, stats.frames_lost,
+               stats.frames_waiting, stats.loop.loops_closed, stats.maps_started, stats.maps_merged, stats.keyframes,
+               stats.map_points, stats.jumps_refused);
   if (t.count("frame_total")) {
     spdlog::info("time per frame: median {:.1f} ms, p95 {:.1f} ms (ORB {:.1f} ms, tracking {:.1f} ms)",
                  t.at("frame_total").median, t.at("frame_total").p95, t.at("orb_extraction").median,

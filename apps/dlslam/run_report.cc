@@ -75,10 +75,22 @@ nlohmann::ordered_json LoopReport(const LoopClosingStats& loop) {
 }  // namespace
 
 nlohmann::ordered_json PoseSourcesReport(const RunStats& stats) {
-  return {{"tracked", stats.frames_tracked - stats.relocalizations},
+  return {{"tracked", stats.frames_tracked - stats.relocalizations - stats.frames_new_map},
           {"relocalized", stats.relocalizations},
           {"coasted", stats.frames_coasted},
+          {"new_map", stats.frames_new_map},
           {"none", stats.frames_lost + stats.frames_waiting}};
+}
+
+char PoseSourceLetter(PoseSource source) {
+  switch (source) {
+    case PoseSource::kTracked: return 't';
+    case PoseSource::kRelocalized: return 'r';
+    case PoseSource::kCoasted: return 'c';
+    case PoseSource::kNewMap: return 'n';
+    case PoseSource::kNone: return '-';
+  }
+  return '-';
 }
 
 nlohmann::ordered_json TimingsReport(const std::map<std::string, TimingSummary>& timings) {
@@ -98,6 +110,8 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
   j["frames_lost"] = stats.frames_lost;
   j["pose_sources"] = PoseSourcesReport(stats);
   j["frames_reextracted"] = stats.frames_reextracted;
+  j["maps_started"] = stats.maps_started;
+  j["maps_merged"] = stats.maps_merged;
   j["relocalizations"] = stats.relocalizations;
   j["jumps_refused"] = stats.jumps_refused;
   j["loops_closed"] = stats.loop.loops_closed;

@@ -39,6 +39,9 @@ nlohmann::ordered_json OrNull(const std::optional<T>& v) {
 
 // How the frames' poses were obtained: {tracked, relocalized, coasted, none}.
 nlohmann::ordered_json PoseSourcesReport(const RunStats& stats);
+// One letter per pose source for the report page and the live view:
+// t tracked, r relocalized, c coasted, n new map (before its merge), - none.
+char PoseSourceLetter(PoseSource source);
 // Per stage: {median, p95, count} [ms].
 nlohmann::ordered_json TimingsReport(const std::map<std::string, TimingSummary>& timings);
 

@@ -98,6 +98,8 @@ void Visit(TrackerOptions& o, V& v) {
   v.Value("max_coasting_correction_deg", o.max_coasting_correction_deg, {"deg", "largest refinement of a coasting pose"});
   v.Value("max_jump_speed", o.max_jump_speed, {"m/s", "a tracked pose departing faster from the prediction is refused"});
   v.Value("max_jump_rate", o.max_jump_rate, {"deg/s", "a tracked pose turning faster from the prediction is refused"});
+  v.Value("new_map_after_lost_frames", o.new_map_after_lost_frames,
+          {"frames", "lost this long without relocalizing: start a new map at the last pose; 0 = never"});
   v.Value("insert_keyframes", o.insert_keyframes, {"", "false: never extend the map (see localization_only)"});
   Section(v, "pose", "pose optimisation", o.pose);
   Section(v, "relocalization", "relocalization of a lost camera", o.relocalization);
@@ -311,6 +313,9 @@ void VisitOptions(RunOptions& options, OptionVisitor& v) {
   v.Value("sequential", s.sequential, {"", "local mapping inline: reproducible bit for bit"});
   v.Value("relocalization", s.relocalization, {"", "relocalize a lost camera"});
   v.Value("loop_closing", s.loop_closing, {"", "close loops"});
+  v.Value("merge_every_frames", s.merge_every_frames, {"frames", "in a new map: try to merge it every k-th frame"});
+  v.Value("merge_agreement_m", s.merge_agreement_m, {"m", "two tries in a row must place the new map this close"});
+  v.Value("merge_agreement_deg", s.merge_agreement_deg, {"deg", "... and turned this close"});
   Section(v, "loop", "loop closing", s.loop);
   v.Value("vocabulary", s.vocabulary, {"", "bag-of-words vocabulary (.dlv); empty = the shipped one"});
   v.Value("keep_keyframe_images", s.keep_keyframe_images, {"", "keep keyframe images for the dense map"});

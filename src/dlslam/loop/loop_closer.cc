@@ -123,6 +123,7 @@ void LoopCloser::AbortGlobalBundle() {
 void LoopCloser::RunGlobalBundle() {
   try {
     const Stopwatch watch;
+    const std::uint64_t generation = map_->Generation();
     LocalBundle bundle = map_->BuildGlobalBundle();
     BundleAdjusterOptions options = options_.global_bundle;
     options.abort = &abort_bundle_;
@@ -134,6 +135,13 @@ void LoopCloser::RunGlobalBundle() {
     }
     {
       const PauseGate::Hold paused = mapper_->Pause();
+      if (map_->Generation() != generation) {
+        // The map moved meanwhile (a new map merged into an older one):
+        // writing back poses from before would undo that.
+        std::lock_guard lock(stats_mutex_);
+        ++stats_.global_bundles_aborted;
+        return;
+      }
       map_->ApplyGlobalBundle(bundle, summary.outlier);
     }
     if (timings_) timings_->Add("global_bundle_adjustment", watch.ElapsedMs());

@@ -53,7 +53,7 @@ struct LoopClosingStats {
   int loops_rejected = 0;         // keyframes whose consistent candidates all failed it
   int loops_closed = 0;
   int global_bundles_completed = 0;
-  int global_bundles_aborted = 0;  // by a newer loop
+  int global_bundles_aborted = 0;  // by a newer loop, or a map merged meanwhile
   std::vector<LoopEvent> loops;
 };
 

@@ -112,6 +112,8 @@ LoopCorrection CloseLoop(Map* map, const LoopMatch& loop, const LoopCorrectionOp
   pose_graph.cam_from_world = graph.cam_from_world;
   pose_graph.fixed.assign(graph.ids.size(), false);
   pose_graph.fixed[0] = true;  // the oldest keyframe defines the world
+  // ... and each map not merged yet is held by its own first keyframe.
+  for (std::size_t n = 1; n < graph.ids.size(); ++n) pose_graph.fixed[n] = map->IsAnchor(graph.ids[n]);
   for (const EssentialGraph::Edge& e : graph.edges) {
     PoseGraphEdge edge{e.from, e.to, e.to_from_from, 1.0};
     const KeyFrameId a = graph.ids[e.from];

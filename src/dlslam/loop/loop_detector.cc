@@ -75,7 +75,12 @@ LoopDetection LoopDetector::Process(KeyFrameId keyframe) {
   detection.candidates = static_cast<int>(candidates.size());
 
   std::vector<place::CandidateGroup> groups;
+  // Loops close within one map; joining a new map to an older one is the
+  // tracker's merge (it relocalizes in the older maps), done before any
+  // pose graph would have to move a map's anchor.
+  const KeyFrameId origin = map_->MapOrigin(keyframe);
   for (const place::PlaceCandidate& c : candidates) {
+    if (map_->MapOrigin(c.keyframe) != origin) continue;
     place::CandidateGroup group{c.keyframe, map_->BestCovisible(c.keyframe, kAllNeighbours)};
     group.group.push_back(c.keyframe);
     groups.push_back(std::move(group));

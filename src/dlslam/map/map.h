@@ -122,7 +122,7 @@ class Map {
   // (found / visible < min_found_ratio) or that too few keyframes observe
   // once two keyframes have passed. Returns how many were removed.
   int CullRecentPoints(KeyFrameId current, int min_observations = 3, double min_found_ratio = 0.25);
-  // Removes covisible neighbours of `current` (never keyframe 0, one with a
+  // Removes covisible neighbours of `current` (never an anchor, one with a
   // loop edge, `current` or a newer one) whose close points are nearly all (redundancy) seen by at
   // least min_views other keyframes at the same or a finer scale. Returns them.
   std::vector<KeyFrameId> CullRedundantKeyFrames(KeyFrameId current, double close_depth, double redundancy = 0.9,
@@ -163,7 +163,7 @@ class Map {
   // moved.
   int ApplyCorrectedPoses(const std::unordered_map<KeyFrameId, SE3d>& corrected);
   // The whole map as a bundle: every keyframe that sees a point of it, free
-  // except keyframe 0 (fixed; if it sees none, the oldest keyframe in the
+  // except the anchors (keyframe 0 fixed; if it sees none, the oldest keyframe in the
   // bundle), and every point with at least 2 observations. Observations as
   // in BuildLocalBundle.
   LocalBundle BuildGlobalBundle() const;
@@ -187,6 +187,18 @@ class Map {
   // the first defect (the map stays empty).
   void Import(MapContents contents);
 
+  // --- Several maps in one (map_loop.cc) ---
+  // A keyframe that starts a map of its own (the tracker was lost and could
+  // not relocalize): like keyframe 0 it is fixed in every bundle, never
+  // culled and fixed in pose graphs, until the map it starts is merged into
+  // an older one (ClearAnchor). Keyframe 0 is always an anchor.
+  void SetAnchor(KeyFrameId keyframe);
+  void ClearAnchor(KeyFrameId keyframe);
+  bool IsAnchor(KeyFrameId keyframe) const;
+  // The anchor that starts the map `keyframe` belongs to: the newest anchor
+  // not newer than it (maps start one after another; 0 for the first map).
+  KeyFrameId MapOrigin(KeyFrameId keyframe) const;
+
   // Counts the corrections (ApplyCorrectedPoses, ApplyGlobalBundle) so that
   // tracking notices that the map moved under it.
   std::uint64_t Generation() const;
@@ -201,7 +213,7 @@ class Map {
   // that already see `into`) and erases `from`.
   void ReplacePointLocked(MapPointId from, MapPointId into);
   // Bundle building shared by the local and the global bundle: adds a pose
-  // (fixed if asked or keyframe 0) unless present; adds the observations of
+  // (fixed if asked or an anchor) unless present; adds the observations of
   // every point in bundle->point_ids, adding their observers as poses
   // (fixed if fix_new_poses).
   void AddBundlePoseLocked(KeyFrameId keyframe, bool fixed, LocalBundle* bundle,
@@ -228,6 +240,8 @@ class Map {
     SE3d cam_from_parent;
   };
   std::unordered_map<KeyFrameId, Culled> culled_;
+  bool IsAnchorLocked(KeyFrameId keyframe) const { return keyframe == 0 || anchors_.count(keyframe) > 0; }
+  std::unordered_set<KeyFrameId> anchors_;  // besides keyframe 0
 
   mutable std::mutex mutex_;
   std::unordered_map<KeyFrameId, KeyFrame> keyframes_;

@@ -95,6 +95,7 @@ LocalBundle Map::BuildGlobalBundle() const {
   // Keyframe 0 first (fixed, the world), then every observer, free.
   std::unordered_map<KeyFrameId, int> pose_index;
   if (keyframes_.count(0)) AddBundlePoseLocked(0, true, &bundle, &pose_index);
+  // The origins of maps not merged yet stay where they are too (AddBundlePoseLocked).
   AddBundleObservationsLocked(/*fix_new_poses=*/false, &bundle, &pose_index);
   // Without observations keyframe 0 would hold nothing in place: leave it
   // out and fix the oldest observer instead.
@@ -111,6 +112,30 @@ LocalBundle Map::BuildGlobalBundle() const {
     bundle.problem.poses[oldest - bundle.pose_ids.begin()].fixed = true;
   }
   return bundle;
+}
+
+void Map::SetAnchor(KeyFrameId keyframe) {
+  std::lock_guard lock(mutex_);
+  if (keyframe != 0) anchors_.insert(keyframe);
+}
+
+void Map::ClearAnchor(KeyFrameId keyframe) {
+  std::lock_guard lock(mutex_);
+  anchors_.erase(keyframe);
+}
+
+bool Map::IsAnchor(KeyFrameId keyframe) const {
+  std::lock_guard lock(mutex_);
+  return IsAnchorLocked(keyframe);
+}
+
+KeyFrameId Map::MapOrigin(KeyFrameId keyframe) const {
+  std::lock_guard lock(mutex_);
+  KeyFrameId origin = 0;
+  for (KeyFrameId anchor : anchors_) {
+    if (anchor <= keyframe && anchor > origin) origin = anchor;
+  }
+  return origin;
 }
 
 void Map::ApplyGlobalBundle(const LocalBundle& bundle, const std::vector<bool>& outlier) {

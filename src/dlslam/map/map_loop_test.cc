@@ -193,6 +193,44 @@ TEST(MapLoop, LoopAnchorsAreNotCulled) {
   EXPECT_LT(PoseDistance(*plain.ResolveCamFromWorld(1), new0), 1e-12);  // same pose as k0 before
 }
 
+// A new map's first keyframe (an anchor) holds its map in place like
+// keyframe 0: fixed in local and global bundles, never culled; the keyframes
+// after it belong to its map until it is merged (ClearAnchor).
+TEST(MapLoop, AnchorsHoldTheirMapsUntilMerged) {
+  const auto scene = testing::LandmarkScene::Room(1500, 3);
+  Map map;
+  MakeRedundantKeyFrames(map, scene);  // k0..k4; k1 is redundant
+  EXPECT_TRUE(map.IsAnchor(0));
+  EXPECT_FALSE(map.IsAnchor(1));
+  EXPECT_EQ(map.MapOrigin(4), 0u);
+  map.SetAnchor(1);
+  EXPECT_TRUE(map.IsAnchor(1));
+  EXPECT_EQ(map.MapOrigin(0), 0u);
+  EXPECT_EQ(map.MapOrigin(1), 1u);
+  EXPECT_EQ(map.MapOrigin(4), 1u);
+  EXPECT_TRUE(map.CullRedundantKeyFrames(2, /*close_depth=*/10.0).empty());
+  const auto fixed_in = [](const LocalBundle& bundle, KeyFrameId id) {
+    const auto it = std::find(bundle.pose_ids.begin(), bundle.pose_ids.end(), id);
+    EXPECT_NE(it, bundle.pose_ids.end()) << "keyframe " << id << " not in the bundle";
+    return it != bundle.pose_ids.end() && bundle.problem.poses[it - bundle.pose_ids.begin()].fixed;
+  };
+  const LocalBundle local = map.BuildLocalBundle(2);
+  EXPECT_TRUE(fixed_in(local, 1));
+  EXPECT_FALSE(fixed_in(local, 2));
+  const LocalBundle global = map.BuildGlobalBundle();
+  EXPECT_TRUE(fixed_in(global, 0));
+  EXPECT_TRUE(fixed_in(global, 1));
+  EXPECT_FALSE(fixed_in(global, 3));
+
+  map.ClearAnchor(1);
+  EXPECT_FALSE(map.IsAnchor(1));
+  EXPECT_EQ(map.MapOrigin(4), 0u);
+  EXPECT_FALSE(fixed_in(map.BuildLocalBundle(2), 1));
+  map.ClearAnchor(0);  // keyframe 0 always anchors the first map
+  EXPECT_TRUE(map.IsAnchor(0));
+  EXPECT_EQ(map.CullRedundantKeyFrames(2, 10.0), std::vector<KeyFrameId>{1});
+}
+
 // Three keyframes along a path seeing a landmark scene with exact pixels and
 // depth; keyframes 1 and 2 are inserted at wrong poses.
 struct SceneMap {

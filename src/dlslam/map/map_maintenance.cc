@@ -35,7 +35,7 @@ void Map::AddBundlePoseLocked(KeyFrameId keyframe, bool fixed, LocalBundle* bund
   if (pose_index->count(keyframe)) return;
   (*pose_index)[keyframe] = static_cast<int>(bundle->pose_ids.size());
   bundle->pose_ids.push_back(keyframe);
-  bundle->problem.poses.push_back({keyframes_.at(keyframe).cam_from_world, fixed || keyframe == 0});
+  bundle->problem.poses.push_back({keyframes_.at(keyframe).cam_from_world, fixed || IsAnchorLocked(keyframe)});
 }
 
 void Map::AddBundleObservationsLocked(bool fix_new_poses, LocalBundle* bundle,
@@ -112,7 +112,7 @@ std::vector<KeyFrameId> Map::CullRedundantKeyFrames(KeyFrameId current, double c
     // (ids grow and the queue is FIFO). Tracking may still be inserting one:
     // it links the keyframe into the covisibility graph and then reads it
     // back, so culling it here would pull it from under the tracking thread.
-    if (id == 0 || id >= current || !keyframes_.count(id)) continue;
+    if (IsAnchorLocked(id) || id >= current || !keyframes_.count(id)) continue;
     const KeyFrame& kf = keyframes_.at(id);
     if (!kf.loop_edges.empty()) continue;  // a loop anchor: the pose graph needs it
     int close_points = 0, redundant = 0;

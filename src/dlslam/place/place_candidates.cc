@@ -95,8 +95,9 @@ std::vector<PlaceCandidate> DetectLoopCandidates(const KeyFrameDatabase& databas
 
 std::vector<PlaceCandidate> DetectRelocalizationCandidates(const KeyFrameDatabase& database, const BowVector& query,
                                                            const CovisibleNeighbours& covisible,
-                                                           const CandidateOptions& options) {
-  return Detect(database, query, {}, 0.0, covisible, options);
+                                                           const CandidateOptions& options,
+                                                           std::vector<KeyFrameId> excluded) {
+  return Detect(database, query, std::move(excluded), 0.0, covisible, options);
 }
 
 }  // namespace dlslam::place

@@ -55,9 +55,12 @@ std::vector<PlaceCandidate> DetectLoopCandidates(const KeyFrameDatabase& databas
                                                  const CandidateOptions& options = {});
 
 // Relocalization candidates for a lost frame: the same without the
-// connected-keyframe exclusion and without a minimum score.
+// connected-keyframe exclusion and without a minimum score; `excluded`
+// keyframes neither count nor lead (the keyframes of a map that is to be
+// merged into the others, when looking for it in them).
 std::vector<PlaceCandidate> DetectRelocalizationCandidates(const KeyFrameDatabase& database, const BowVector& query,
                                                            const CovisibleNeighbours& covisible,
-                                                           const CandidateOptions& options = {});
+                                                           const CandidateOptions& options = {},
+                                                           std::vector<KeyFrameId> excluded = {});
 
 }  // namespace dlslam::place

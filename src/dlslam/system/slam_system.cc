@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
@@ -110,6 +111,7 @@ const char* ToString(PoseSource source) {
     case PoseSource::kTracked: return "tracked";
     case PoseSource::kRelocalized: return "relocalized";
     case PoseSource::kCoasted: return "coasted";
+    case PoseSource::kNewMap: return "new_map";
     case PoseSource::kNone: return "none";
   }
   return "?";
@@ -135,6 +137,10 @@ void SystemOptions::Check() const {
   semantic.Check();
   DLSLAM_CHECK(reextract_removed_share > 0 && reextract_removed_share <= 1,
                "SystemOptions::reextract_removed_share {} outside (0, 1]", reextract_removed_share);
+  DLSLAM_CHECK(merge_every_frames >= 1 && merge_every_frames <= 100000,
+               "SystemOptions::merge_every_frames {} outside [1, 100000]", merge_every_frames);
+  DLSLAM_CHECK(merge_agreement_m > 0 && merge_agreement_deg > 0,
+               "SystemOptions::merge_agreement {} m, {} deg must be > 0", merge_agreement_m, merge_agreement_deg);
 }
 
 SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& options)
@@ -261,6 +267,15 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     timings_.Add("relocalization_attempt", result.relocalization_ms);
   }
   LogStateChange(result, timestamp);
+  if (result.new_map) {
+    ++counts_.maps_started;
+    frames_in_new_map_ = 0;
+    pending_merge_.reset();
+    spdlog::info("t={:.6f}: lost for too long, a new map starts at the last pose (keyframe {})", timestamp,
+                 result.reference_keyframe);
+  } else if (result.state == TrackingState::kOk && tracker_.new_map_origin()) {
+    TryMergeNewMap(*frame, result);  // a merged frame counts as tracked
+  }
   if (result.jump_refused) {
     ++counts_.jumps_refused;
     spdlog::debug("t={:.6f}: tracked pose refused, too far from the motion model", timestamp);
@@ -277,7 +292,14 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   switch (result.state) {
     case TrackingState::kOk:
       ++counts_.frames_tracked;
-      source = result.relocalized ? PoseSource::kRelocalized : PoseSource::kTracked;
+      if (result.relocalized) {
+        source = PoseSource::kRelocalized;
+      } else if (tracker_.new_map_origin()) {
+        source = PoseSource::kNewMap;
+        ++counts_.frames_new_map;
+      } else {
+        source = PoseSource::kTracked;
+      }
       break;
     case TrackingState::kCoasting:
       ++counts_.frames_coasted;
@@ -292,6 +314,42 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   sources_.push_back({timestamp, source});
   timings_.Add("frame_total", total.ElapsedMs());
   return result;
+}
+
+bool SlamSystem::TryMergeNewMap(const Frame& frame, const TrackingResult& result) {
+  if (++frames_in_new_map_ % options_.merge_every_frames != 0 || !result.cam_from_world) return false;
+  const Stopwatch watch;
+  const std::optional<Relocalization> found = tracker_.FindInOlderMaps(frame);
+  timings_.Add("merge_attempt", watch.ElapsedMs());
+  if (!found) return false;
+  const KeyFrameId origin = *tracker_.new_map_origin();
+  // cam_from_old_world = cam_from_new_world * new_world_from_old_world.
+  const SE3d new_from_old = result.cam_from_world->Inverse() * found->cam_from_world;
+  // One relocalization may be wrong (a kitchen has many similar cupboards)
+  // and a wrong merge wrecks both maps: two in a row must agree.
+  const std::optional<SE3d> previous = std::exchange(pending_merge_, new_from_old);
+  if (!previous) return false;
+  const SE3d disagreement = *previous * new_from_old.Inverse();
+  constexpr double kRadToDeg = 57.29577951308232;
+  if (disagreement.translation().norm() > options_.merge_agreement_m ||
+      disagreement.so3().Log().norm() * kRadToDeg > options_.merge_agreement_deg) {
+    return false;
+  }
+  {
+    const PauseGate::Hold paused = mapper_.Pause();  // its bundle would write back poses from before
+    std::unordered_map<KeyFrameId, SE3d> corrected;
+    for (const KeyFramePose& k : map_.KeyFramePoses()) {
+      if (k.id >= origin) corrected.emplace(k.id, k.cam_from_world * new_from_old);
+    }
+    map_.ApplyCorrectedPoses(corrected);
+  }
+  tracker_.MergedIntoOlderMap(*found);
+  pending_merge_.reset();
+  ++counts_.maps_merged;
+  spdlog::info("t={:.6f}: the map started at keyframe {} merged into the older map at keyframe {} ({} inliers; "
+               "moved {:.3f} m, {:.2f} deg)", frame.timestamp(), origin, found->keyframe, found->inliers,
+               new_from_old.translation().norm(), new_from_old.so3().Log().norm() * kRadToDeg);
+  return true;
 }
 
 void SlamSystem::LogStateChange(const TrackingResult& result, double timestamp) {

@@ -30,15 +30,21 @@ Relocalizer::Relocalizer(const RelocalizerOptions& options, const Map* map, cons
   DLSLAM_CHECK(map_ != nullptr && index_ != nullptr);
 }
 
-RelocalizationAttempt Relocalizer::Relocalize(const Frame& frame) const {
+RelocalizationAttempt Relocalizer::Relocalize(const Frame& frame, KeyFrameId below) const {
   RelocalizationAttempt attempt;
   if (frame.size() == 0 || index_->size() == 0) return attempt;
   const place::BowDescription description = index_->Describe(frame.descriptors());
   const place::CovisibleNeighbours covisible = [this](KeyFrameId id, int count) {
     return map_->BestCovisible(id, static_cast<std::size_t>(std::max(count, 0)));
   };
-  const std::vector<place::PlaceCandidate> candidates =
-      place::DetectRelocalizationCandidates(index_->database(), description.bow, covisible, options_.candidates);
+  std::vector<KeyFrameId> excluded;
+  if (below != kNoId) {
+    for (const KeyFramePose& k : map_->KeyFramePoses()) {
+      if (k.id >= below) excluded.push_back(k.id);
+    }
+  }
+  const std::vector<place::PlaceCandidate> candidates = place::DetectRelocalizationCandidates(
+      index_->database(), description.bow, covisible, options_.candidates, std::move(excluded));
   attempt.candidates = static_cast<int>(candidates.size());
   const int n = std::min(static_cast<int>(candidates.size()), options_.max_candidates);
   for (int c = 0; c < n; ++c) {

@@ -66,7 +66,9 @@ class Relocalizer {
   // `map` and `index` outlive the relocalizer.
   Relocalizer(const RelocalizerOptions& options, const Map* map, const place::KeyFrameIndex* index);
 
-  RelocalizationAttempt Relocalize(const Frame& frame) const;
+  // Candidates among the keyframes with an id below `below` only (kNoId:
+  // all): the maps older than a new one, to merge it (tracker.h).
+  RelocalizationAttempt Relocalize(const Frame& frame, KeyFrameId below = kNoId) const;
 
  private:
   // The pose from one candidate keyframe, or nullopt.

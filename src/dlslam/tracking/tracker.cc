@@ -32,6 +32,8 @@ void TrackerOptions::Check() const {
   DLSLAM_CHECK(max_coasting_correction_m > 0 && max_coasting_correction_deg > 0,
                "TrackerOptions::max_coasting_correction {} m, {} deg must be > 0", max_coasting_correction_m,
                max_coasting_correction_deg);
+  DLSLAM_CHECK(new_map_after_lost_frames >= 0 && new_map_after_lost_frames <= 100000,
+               "TrackerOptions::new_map_after_lost_frames {} outside [0, 100000]", new_map_after_lost_frames);
   DLSLAM_CHECK(max_jump_speed > 0 && max_jump_rate > 0,
                "TrackerOptions::max_jump_speed {} m/s, max_jump_rate {} deg/s must be > 0", max_jump_speed,
                max_jump_rate);
@@ -61,7 +63,7 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
   DLSLAM_CHECK(frame != nullptr);
   TrackingResult result;
   if (state_ == TrackingState::kNotInitialized) {
-    if (Initialize(frame, &result)) state_ = TrackingState::kOk;
+    if (StartMap(frame, SE3d::Identity(), &result)) state_ = TrackingState::kOk;  // the first keyframe defines the world
     result.state = state_;
     return result;
   }
@@ -82,6 +84,8 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
       pose = attempt.result->cam_from_world;
       matches = attempt.result->matches;
       reference_keyframe_ = attempt.result->keyframe;
+      // Found in an older map: the new maps after it are left as they are.
+      while (!origins_.empty() && origins_.back() > reference_keyframe_) origins_.pop_back();
       result.relocalized = true;
       result.relocalization_keyframe = attempt.result->keyframe;
     }
@@ -116,7 +120,23 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
     result.cam_from_reference = last_from_reference_.value_or(SE3d::Identity());
     return result;
   }
+  if (!ok && state_ == TrackingState::kLost && options_.insert_keyframes && options_.new_map_after_lost_frames > 0 &&
+      lost_frames_ >= options_.new_map_after_lost_frames) {
+    // Where the camera was last seen is the best guess of where it is.
+    const SE3d start = last_pose_ ? LastPose() : SE3d::Identity();
+    if (StartMap(frame, start, &result)) {
+      map_->SetAnchor(reference_keyframe_);
+      origins_.push_back(reference_keyframe_);
+      state_ = TrackingState::kOk;
+      lost_frames_ = 0;
+      coasted_frames_ = 0;
+      result.state = state_;
+      result.new_map = true;
+      return result;
+    }
+  }
   if (!ok) {
+    if (state_ == TrackingState::kLost) ++lost_frames_;
     state_ = TrackingState::kLost;
     velocity_.reset();
     result.relocalized = false;
@@ -127,6 +147,7 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
   }
   state_ = TrackingState::kOk;
   coasted_frames_ = 0;
+  lost_frames_ = 0;
   reference_keyframe_ = reference;
   // After a relocalization the last pose is from before the loss: no motion model.
   velocity_ = last_pose_ && !result.relocalized ? std::optional<SE3d>(pose * last_pose_->Inverse()) : std::nullopt;
@@ -170,11 +191,25 @@ bool Tracker::Coast(const SE3d& refined, int inliers, SE3d* pose) const {
   return true;
 }
 
-bool Tracker::Initialize(const std::shared_ptr<const Frame>& frame, TrackingResult* result) {
+std::optional<Relocalization> Tracker::FindInOlderMaps(const Frame& frame) const {
+  if (origins_.empty() || !relocalizer_) return std::nullopt;
+  return relocalizer_->Relocalize(frame, /*below=*/origins_.back()).result;
+}
+
+void Tracker::MergedIntoOlderMap(const Relocalization& found) {
+  DLSLAM_CHECK(!origins_.empty() && found.keyframe < origins_.back(), "MergedIntoOlderMap without a new map");
+  map_->ClearAnchor(origins_.back());
+  origins_.pop_back();
+  // The velocity is a motion between camera frames: it holds in any map.
+  reference_keyframe_ = found.keyframe;
+  last_matches_ = found.matches;
+  RememberPose(found.cam_from_world, found.keyframe, map_->Generation());
+}
+
+bool Tracker::StartMap(const std::shared_ptr<const Frame>& frame, const SE3d& pose, TrackingResult* result) {
   int with_depth = 0;
   for (std::size_t i = 0; i < frame->size(); ++i) with_depth += frame->keypoint(i).depth > 0;
   if (with_depth < options_.min_init_points) return false;
-  const SE3d pose = SE3d::Identity();  // the first keyframe defines the world
   // The first keyframe takes every keypoint with depth (ORB-SLAM's RGB-D
   // initialisation); later ones only the close ones.
   reference_keyframe_ =
@@ -182,6 +217,7 @@ bool Tracker::Initialize(const std::shared_ptr<const Frame>& frame, TrackingResu
   RememberPose(pose, reference_keyframe_, map_->Generation());
   last_timestamp_ = frame->timestamp();
   velocity_.reset();
+  result->state = TrackingState::kOk;
   result->cam_from_world = pose;
   result->cam_from_reference = SE3d::Identity();
   result->new_keyframe = true;

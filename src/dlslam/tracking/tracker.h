@@ -14,7 +14,12 @@
 // max_coasting_frames; meanwhile the map is searched around the coasted pose
 // and relocalization is tried. After that the frame is lost; the next frames
 // try to relocalize against the whole map (relocalizer.h, when the tracker
-// has a keyframe index), then the last reference keyframe.
+// has a keyframe index), then the last reference keyframe. When that keeps
+// failing (the camera went where the map has never been while it was
+// covered), a new map starts at the last pose there was (ORB-SLAM3's Atlas
+// idea, in one Map: the new map's first keyframe is an anchor, Map::SetAnchor);
+// FindInOlderMaps / MergedIntoOlderMap let the system join it to the older
+// map once a frame relocalizes there.
 
 #include <functional>
 #include <memory>
@@ -81,6 +86,10 @@ struct TrackerOptions {
   // 0.4-0.9 m in one frame. 8 m/s, 360 deg/s: 0.27 m, 12 deg at 30 Hz.
   double max_jump_speed = 8.0;   // [m/s]
   double max_jump_rate = 360.0;  // [deg/s]
+  // A lost tracker that has not relocalized for this many frames starts a
+  // new map at its last pose (0 = never: stay lost) [frames; 5 = 1/6 s of
+  // relocalization attempts at 30 Hz].
+  int new_map_after_lost_frames = 5;
   // false: localization only, the map is never extended (a loaded map).
   bool insert_keyframes = true;
   // Used when the tracker is given a keyframe index.
@@ -112,6 +121,8 @@ struct TrackingResult {
   // The map gave a pose too far from the prediction to be motion
   // (TrackerOptions::max_jump_speed): refused, the frame coasted or was lost.
   bool jump_refused = false;
+  // Lost for too long: this frame started a new map (its first keyframe).
+  bool new_map = false;
 };
 
 class Tracker {
@@ -145,11 +156,25 @@ class Tracker {
   std::optional<SE3d> PredictedCamFromWorld() const {
     return last_pose_ ? std::optional<SE3d>(PredictedPose()) : std::nullopt;
   }
+  // Tracking in a map started after a loss that has not been merged into an
+  // older one yet: its first keyframe; nullopt otherwise.
+  std::optional<KeyFrameId> new_map_origin() const {
+    return origins_.empty() ? std::nullopt : std::optional<KeyFrameId>(origins_.back());
+  }
+  // Relocalizes `frame` in the maps older than the current new map (their
+  // keyframes only); nullopt when there is none or it fails.
+  std::optional<Relocalization> FindInOlderMaps(const Frame& frame) const;
+  // After the caller moved the current new map onto the older map where
+  // `found` (from FindInOlderMaps) put the frame: the new map is merged (its
+  // anchor cleared) and tracking goes on from `found`'s pose and matches.
+  void MergedIntoOlderMap(const Relocalization& found);
   // The keyframe the last tracked frame shares most points with.
   KeyFrameId reference_keyframe() const { return reference_keyframe_; }
 
  private:
-  bool Initialize(const std::shared_ptr<const Frame>& frame, TrackingResult* result);
+  // Starts a map with `frame` as its first keyframe at `pose`; false when the
+  // frame has too few keypoints with depth.
+  bool StartMap(const std::shared_ptr<const Frame>& frame, const SE3d& pose, TrackingResult* result);
   // The coasting pose of a frame that failed to track: `refined` (the local
   // map's optimisation, `inliers` of them) when it agrees with the
   // prediction, else the prediction. False when the frame may not coast.
@@ -193,6 +218,9 @@ class Tracker {
   KeyFrameId reference_keyframe_ = kNoId;
   int frames_since_keyframe_ = 0;
   int coasted_frames_ = 0;  // in a row, up to the current frame
+  int lost_frames_ = 0;     // in a row, up to the current frame
+  // First keyframes of the maps started after a loss and not merged, oldest first.
+  std::vector<KeyFrameId> origins_;
   double last_timestamp_ = 0.0;  // of the last frame with a pose
 };
 
