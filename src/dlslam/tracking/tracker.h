@@ -86,9 +86,9 @@ struct TrackerOptions {
   // 0.4-0.9 m in one frame. 8 m/s, 360 deg/s: 0.27 m, 12 deg at 30 Hz.
   double max_jump_speed = 8.0;   // [m/s]
   double max_jump_rate = 360.0;  // [deg/s]
-  // A lost tracker that has not relocalized for this many frames starts a
-  // new map at its last pose (0 = never: stay lost) [frames; 5 = 1/6 s of
-  // relocalization attempts at 30 Hz].
+  // A tracker that stays lost for this many frames after the one that lost
+  // it (relocalization failing on each) starts a new map at its last pose
+  // (0 = never: stay lost) [frames; 5 = 1/6 s of attempts at 30 Hz].
   int new_map_after_lost_frames = 5;
   // false: localization only, the map is never extended (a loaded map).
   bool insert_keyframes = true;
@@ -162,8 +162,9 @@ class Tracker {
     return origins_.empty() ? std::nullopt : std::optional<KeyFrameId>(origins_.back());
   }
   // Relocalizes `frame` in the maps older than the current new map (their
-  // keyframes only); nullopt when there is none or it fails.
-  std::optional<Relocalization> FindInOlderMaps(const Frame& frame) const;
+  // keyframes only) and refines the pose on their local map; nullopt when
+  // there is none or it fails.
+  std::optional<Relocalization> FindInOlderMaps(const Frame& frame);
   // After the caller moved the current new map onto the older map where
   // `found` (from FindInOlderMaps) put the frame: the new map is merged (its
   // anchor cleared) and tracking goes on from `found`'s pose and matches.
