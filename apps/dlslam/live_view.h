@@ -33,7 +33,7 @@ struct LiveFrame {
   std::optional<Eigen::Vector3d> position;      // world_from_cam translation
   std::optional<SE3d> world_from_cam;
   std::optional<SE3d> ground_truth;             // at this frame's time
-  char source = 't';                            // t, r, c: tracked, relocalized, coasted
+  char source = 't';                            // PoseSourceLetter: t, r, c, n
 };
 
 class LiveView {

@@ -61,7 +61,8 @@ std::filesystem::path PoseSourcesPath(const std::filesystem::path& trajectory) {
 void WritePoseSources(const std::filesystem::path& path, const std::vector<FramePoseSource>& sources) {
   io::WriteFileAtomically(path, [&](std::ostream& out) {
     out << "# how each frame's pose was obtained: tracked, relocalized, coasted (motion model, not confirmed by the "
-           "map) or none\n# timestamp source\n";
+           "map), new_map (tracked in a map started after a loss, before it merged into the older one) or none\n"
+           "# timestamp source\n";
     for (const FramePoseSource& s : sources) out << fmt::format("{:.6f} {}\n", s.timestamp, ToString(s.source));
   });
 }
@@ -302,7 +303,7 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("--out", args->out, "Camera trajectory output (TUM format)")->capture_default_str();
   cmd->add_option("--keyframes", args->keyframes, "Keyframe trajectory output (TUM format)");
   cmd->add_option("--pose-sources", args->pose_sources,
-                  "How each frame's pose was obtained (timestamp tracked|relocalized|coasted|none); default: beside "
+                  "How each frame's pose was obtained (timestamp tracked|relocalized|coasted|new_map|none); default: beside "
                   "--out, traj.txt -> traj.sources.txt");
   cmd->add_option("--report", args->report, "JSON report: frames, tracking, timing, ATE/RPE");
   cmd->add_flag("--view{8090}", args->view_port,

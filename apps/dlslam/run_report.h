@@ -37,7 +37,7 @@ nlohmann::ordered_json OrNull(const std::optional<T>& v) {
   return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
 }
 
-// How the frames' poses were obtained: {tracked, relocalized, coasted, none}.
+// How the frames' poses were obtained: {tracked, relocalized, coasted, new_map, none}.
 nlohmann::ordered_json PoseSourcesReport(const RunStats& stats);
 // One letter per pose source for the report page and the live view:
 // t tracked, r relocalized, c coasted, n new map (before its merge), - none.
