@@ -131,6 +131,12 @@ std::string Table(const std::vector<ModeRun>& runs, double budget_ms) {
     return fmt::format("{}/{}", r.outcome.stats.frames_tracked, r.outcome.stats.frames);
   });
   table += row("frames coasted", [](const ModeRun& r) { return fmt::format("{}", r.outcome.stats.frames_coasted); });
+  table += row("of tracked: in a new map", [](const ModeRun& r) {
+    return fmt::format("{}", r.outcome.stats.frames_new_map);
+  });
+  table += row("frames without a pose", [](const ModeRun& r) {
+    return fmt::format("{}", r.outcome.stats.frames_lost + r.outcome.stats.frames_waiting);
+  });
   table += row("wall time [s]", [](const ModeRun& r) { return fmt::format("{:.1f}", r.wall_s); });
   table += row("real-time factor", [](const ModeRun& r) {
     return r.wall_s > 0 && r.sequence_s > 0 ? fmt::format("{:.2f}x", r.sequence_s / r.wall_s) : std::string("-");
@@ -158,6 +164,10 @@ nlohmann::ordered_json Json(const BenchArgs& args, const fs::path& sequence, con
     m["frames"] = r.outcome.stats.frames;
     m["frames_tracked"] = r.outcome.stats.frames_tracked;
     m["frames_coasted"] = r.outcome.stats.frames_coasted;
+    m["frames_new_map"] = r.outcome.stats.frames_new_map;
+    m["frames_without_pose"] = r.outcome.stats.frames_lost + r.outcome.stats.frames_waiting;
+    m["maps_started"] = r.outcome.stats.maps_started;
+    m["maps_merged"] = r.outcome.stats.maps_merged;
     m["wall_s"] = r.wall_s;
     m["sequence_s"] = r.sequence_s;
     m["realtime_factor"] = r.wall_s > 0 ? r.sequence_s / r.wall_s : 0.0;
