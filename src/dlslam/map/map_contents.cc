@@ -42,6 +42,8 @@ MapContents Map::Export() const {
   for (const auto& [id, c] : culled_) out.culled.push_back({id, c.parent, c.cam_from_parent});
   std::sort(out.culled.begin(), out.culled.end(),
             [](const CulledKeyFrame& a, const CulledKeyFrame& b) { return a.id < b.id; });
+  out.anchors.assign(anchors_.begin(), anchors_.end());
+  std::sort(out.anchors.begin(), out.anchors.end());
   out.next_keyframe_id = next_keyframe_id_;
   out.next_point_id = next_point_id_;
   return out;
@@ -69,6 +71,9 @@ void Map::Import(MapContents contents) {
     if (!Finite(c.cam_from_parent)) Defect(fmt::format("culled keyframe {} has a non-finite pose", c.id));
   }
   const auto known_keyframe = [&](KeyFrameId id) { return keyframe_index.count(id) > 0; };
+  for (KeyFrameId a : contents.anchors) {
+    if (!known_keyframe(a)) Defect(fmt::format("anchor {} is not a keyframe", a));
+  }
   for (const CulledKeyFrame& c : contents.culled) {
     if (!known_keyframe(c.parent) && !culled_ids.count(c.parent)) {
       Defect(fmt::format("culled keyframe {} has an unknown parent {}", c.id, c.parent));
@@ -128,6 +133,7 @@ void Map::Import(MapContents contents) {
     points_.emplace(id, std::move(p));
   }
   for (const CulledKeyFrame& c : contents.culled) culled_[c.id] = {c.parent, c.cam_from_parent};
+  anchors_.insert(contents.anchors.begin(), contents.anchors.end());
   next_keyframe_id_ = contents.next_keyframe_id;
   next_point_id_ = contents.next_point_id;
   ++generation_;  // whatever a tracker remembered belongs to another map

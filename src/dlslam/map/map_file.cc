@@ -276,6 +276,8 @@ std::string SerializeMap(const MapContents& contents, const MapFileHeader& heade
     w.Put(c.parent);
     w.PutPose(c.cam_from_parent);
   }
+  w.Put<std::uint64_t>(contents.anchors.size());
+  for (KeyFrameId a : contents.anchors) w.Put(a);
   std::string& out = w.bytes();
   const std::uint64_t payload = out.size() - kHeaderBytes;
   std::memcpy(out.data() + 16, &payload, sizeof payload);
@@ -292,8 +294,8 @@ MapFileHeader ParseMap(std::string_view bytes, const std::filesystem::path& file
   if (bytes.size() < kHeaderBytes + 4) throw InputError(file, 0, "truncated: {} bytes, the header alone is {}", bytes.size(), kHeaderBytes + 4);
   std::uint32_t version = 0;
   std::memcpy(&version, bytes.data() + 8, sizeof version);
-  if (version != kMapFileVersion) {
-    throw InputError(file, 0, "unsupported map version {} (offset 8); this build reads version {}", version,
+  if (version != kMapFileVersion && version != 1) {
+    throw InputError(file, 0, "unsupported map version {} (offset 8); this build reads versions 1 to {}", version,
                      kMapFileVersion);
   }
   std::uint64_t payload = 0;
@@ -333,6 +335,10 @@ MapFileHeader ParseMap(std::string_view bytes, const std::filesystem::path& file
     c.parent = r.Get<std::uint64_t>("culled keyframe");
     c.cam_from_parent = r.GetPose("culled keyframe pose");
     contents.culled.push_back(c);
+  }
+  if (version >= 2) {
+    const std::uint64_t anchors = r.Count(max_records, "anchor");
+    for (std::uint64_t i = 0; i < anchors; ++i) contents.anchors.push_back(r.Get<std::uint64_t>("anchor"));
   }
   if (r.offset() != kHeaderBytes + payload) {
     throw InputError(file, 0, "{} unread bytes at offset {} before the checksum", kHeaderBytes + payload - r.offset(),

@@ -35,7 +35,9 @@
 
 namespace dlslam {
 
-inline constexpr std::uint32_t kMapFileVersion = 1;
+// 2 adds the anchors of maps not merged yet (Map::SetAnchor); version 1
+// files (no anchors) are still read.
+inline constexpr std::uint32_t kMapFileVersion = 2;
 
 struct MapFileHeader {
   CameraIntrinsics camera;  // the camera the map was made with

@@ -88,6 +88,40 @@ TEST_F(MapFileTest, LoadThenSaveGivesTheSameBytesAndTheSameMap) {
   EXPECT_EQ(loaded.GetLocalMap(a->points).points.size(), map_.GetLocalMap(a->points).points.size());
 }
 
+// The first keyframes of maps not merged yet (a new map after a loss) stay
+// anchors after a load; a version 1 file (before anchors) still loads.
+TEST_F(MapFileTest, AnchorsSurviveAndVersionOneStillLoads) {
+  const std::vector<KeyFramePose> poses = map_.KeyFramePoses();
+  const KeyFrameId anchor = poses[poses.size() / 2].id;
+  ASSERT_NE(anchor, 0u);
+  map_.SetAnchor(anchor);
+  const std::string bytes = Bytes();
+  Map loaded;
+  ParseMap(bytes, "room.dlmap", &loaded);
+  EXPECT_TRUE(loaded.IsAnchor(anchor));
+  EXPECT_EQ(loaded.MapOrigin(poses.back().id), anchor);
+  EXPECT_EQ(loaded.Export().anchors, std::vector<KeyFrameId>{anchor});
+
+  // Version 1: the same payload without the anchor list (its count and one id).
+  std::string v1 = bytes.substr(0, bytes.size() - 4 - 16) + std::string(4, '\0');
+  const std::uint32_t one = 1;
+  std::memcpy(v1.data() + 8, &one, sizeof one);
+  std::uint64_t payload = 0;
+  std::memcpy(&payload, v1.data() + 16, sizeof payload);
+  payload -= 16;
+  std::memcpy(v1.data() + 16, &payload, sizeof payload);
+  Reseal(&v1);
+  Map old;
+  ParseMap(v1, "old.dlmap", &old);
+  EXPECT_EQ(old.NumKeyFrames(), map_.NumKeyFrames());
+  EXPECT_FALSE(old.IsAnchor(anchor));
+
+  // An anchor that is no keyframe is a defect.
+  MapContents contents = map_.Export();
+  contents.anchors = {424242};
+  EXPECT_THAT(ParseError(SerializeMap(contents, Header())), HasSubstr("anchor 424242 is not a keyframe"));
+}
+
 TEST_F(MapFileTest, SaveAndLoadAFile) {
   const std::filesystem::path file = testing::MakeTempDir("map_file") / "room.dlmap";
   SaveMap(map_, Header(), file);

@@ -69,6 +69,8 @@ struct MapContents {
   std::vector<KeyFrame> keyframes;
   std::vector<MapPoint> points;
   std::vector<CulledKeyFrame> culled;
+  // First keyframes of maps not merged yet (Map::SetAnchor), sorted; keyframe 0 is implied.
+  std::vector<KeyFrameId> anchors;
   KeyFrameId next_keyframe_id = 0;
   MapPointId next_point_id = 0;
 };
