@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include <opencv2/imgproc.hpp>
@@ -330,7 +331,7 @@ bool SlamSystem::TryMergeNewMap(const Frame& frame, const TrackingResult& result
   const std::optional<SE3d> previous = std::exchange(pending_merge_, new_from_old);
   if (!previous) return false;
   const SE3d disagreement = *previous * new_from_old.Inverse();
-  constexpr double kRadToDeg = 57.29577951308232;
+  constexpr double kRadToDeg = 180.0 / std::numbers::pi;
   if (disagreement.translation().norm() > options_.merge_agreement_m ||
       disagreement.so3().Log().norm() * kRadToDeg > options_.merge_agreement_deg) {
     return false;
