@@ -135,7 +135,7 @@ std::string Table(const std::vector<ModeRun>& runs, double budget_ms) {
     return fmt::format("{}", r.outcome.stats.frames_new_map);
   });
   table += row("frames without a pose", [](const ModeRun& r) {
-    return fmt::format("{}", r.outcome.stats.frames_lost + r.outcome.stats.frames_waiting);
+    return fmt::format("{}", r.outcome.stats.frames_without_pose());
   });
   table += row("wall time [s]", [](const ModeRun& r) { return fmt::format("{:.1f}", r.wall_s); });
   table += row("real-time factor", [](const ModeRun& r) {
@@ -165,7 +165,7 @@ nlohmann::ordered_json Json(const BenchArgs& args, const fs::path& sequence, con
     m["frames_tracked"] = r.outcome.stats.frames_tracked;
     m["frames_coasted"] = r.outcome.stats.frames_coasted;
     m["frames_new_map"] = r.outcome.stats.frames_new_map;
-    m["frames_without_pose"] = r.outcome.stats.frames_lost + r.outcome.stats.frames_waiting;
+    m["frames_without_pose"] = r.outcome.stats.frames_without_pose();
     m["maps_started"] = r.outcome.stats.maps_started;
     m["maps_merged"] = r.outcome.stats.maps_merged;
     m["wall_s"] = r.wall_s;

@@ -178,7 +178,7 @@ nlohmann::ordered_json HtmlReportData(const HtmlReportInput& input) {
   nlohmann::ordered_json& s = d["summary"];
   s["mode"] = ToString(stats.dynamic.mode);
   s["frames"] = stats.frames;
-  s["frames_posed"] = stats.frames_tracked + stats.frames_coasted;
+  s["frames_posed"] = stats.frames_posed();
   s["pose_sources"] = PoseSourcesReport(stats);
   const std::optional<RunEvaluation>& evaluation = *input.evaluation;
   s["ate_rmse"] = evaluation ? nlohmann::ordered_json(evaluation->ate.error.rmse) : nullptr;

@@ -232,9 +232,8 @@ RunOutcome RunSequence(const RunArgs& args) {
   spdlog::info("posed {}/{} frames (tracked {}, relocalized {}, coasted {}, in a new map {}), without a pose {} (lost "
                "{}, before initialisation {}), {} loops closed, {} new maps ({} merged), {} keyframes, {} map points, "
                "{} jumps refused",
-               stats.frames_tracked + stats.frames_coasted, stats.frames,
-               stats.frames_tracked - stats.relocalizations - stats.frames_new_map, stats.relocalizations,
-               stats.frames_coasted, stats.frames_new_map, stats.frames_lost + stats.frames_waiting, stats.frames_lost,
+               stats.frames_posed(), stats.frames, stats.frames_tracked_source(), stats.relocalizations,
+               stats.frames_coasted, stats.frames_new_map, stats.frames_without_pose(), stats.frames_lost,
                stats.frames_waiting, stats.loop.loops_closed, stats.maps_started, stats.maps_merged, stats.keyframes,
                stats.map_points, stats.jumps_refused);
   if (t.count("frame_total")) {

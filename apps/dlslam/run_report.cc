@@ -75,11 +75,11 @@ nlohmann::ordered_json LoopReport(const LoopClosingStats& loop) {
 }  // namespace
 
 nlohmann::ordered_json PoseSourcesReport(const RunStats& stats) {
-  return {{"tracked", stats.frames_tracked - stats.relocalizations - stats.frames_new_map},
+  return {{"tracked", stats.frames_tracked_source()},
           {"relocalized", stats.relocalizations},
           {"coasted", stats.frames_coasted},
           {"new_map", stats.frames_new_map},
-          {"none", stats.frames_lost + stats.frames_waiting}};
+          {"none", stats.frames_without_pose()}};
 }
 
 char PoseSourceLetter(PoseSource source) {
@@ -104,7 +104,7 @@ nlohmann::ordered_json TimingsReport(const std::map<std::string, TimingSummary>&
 nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<RunEvaluation>& evaluation) {
   nlohmann::ordered_json j;
   j["frames"] = stats.frames;
-  j["frames_posed"] = stats.frames_tracked + stats.frames_coasted;
+  j["frames_posed"] = stats.frames_posed();
   j["frames_tracked"] = stats.frames_tracked;
   j["frames_coasted"] = stats.frames_coasted;
   j["frames_lost"] = stats.frames_lost;

@@ -110,6 +110,11 @@ TEST_F(ConfigFileTest, MistakesAreErrorsWithTheirLine) {
   const std::string range = Error("orb:\n  n_features: 1000\n  scale_factor: 0.5\n");
   EXPECT_THAT(range, HasSubstr("c.yaml:3: orb.scale_factor: out of range"));
   EXPECT_THAT(Error("tracker:\n  max_coasting_frames: -1\n"), HasSubstr("c.yaml:2: tracker.max_coasting_frames: out of range"));
+  // The new-map keys.
+  EXPECT_THAT(Error("tracker:\n  new_map_after_lost_frames: -1\n"),
+              HasSubstr("c.yaml:2: tracker.new_map_after_lost_frames: out of range"));
+  EXPECT_THAT(Error("merge_every_frames: 0\n"), HasSubstr("c.yaml:1: merge_every_frames: out of range"));
+  EXPECT_THAT(Error("merge_agreement_deg: -3\n"), HasSubstr("c.yaml:1: merge_agreement_deg: out of range"));
 }
 
 TEST_F(ConfigFileTest, TheReportJsonIsNested) {

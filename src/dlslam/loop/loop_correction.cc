@@ -110,10 +110,10 @@ LoopCorrection CloseLoop(Map* map, const LoopMatch& loop, const LoopCorrectionOp
   const auto moved = [&](KeyFrameId id) { return corrected.count(id) > 0; };
   PoseGraph pose_graph;
   pose_graph.cam_from_world = graph.cam_from_world;
-  pose_graph.fixed.assign(graph.ids.size(), false);
-  pose_graph.fixed[0] = true;  // the oldest keyframe defines the world
-  // ... and each map not merged yet is held by its own first keyframe.
-  for (std::size_t n = 1; n < graph.ids.size(); ++n) pose_graph.fixed[n] = map->IsAnchor(graph.ids[n]);
+  // The oldest keyframe defines the world; each map not merged yet is held
+  // by its own first keyframe.
+  pose_graph.fixed.resize(graph.ids.size());
+  for (std::size_t n = 0; n < graph.ids.size(); ++n) pose_graph.fixed[n] = n == 0 || map->IsAnchor(graph.ids[n]);
   for (const EssentialGraph::Edge& e : graph.edges) {
     PoseGraphEdge edge{e.from, e.to, e.to_from_from, 1.0};
     const KeyFrameId a = graph.ids[e.from];

@@ -275,7 +275,7 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     spdlog::info("t={:.6f}: lost for too long, a new map starts at the last pose (keyframe {})", timestamp,
                  result.reference_keyframe);
   } else if (result.state == TrackingState::kOk && tracker_.new_map_origin()) {
-    TryMergeNewMap(*frame, result);  // a merged frame counts as tracked
+    TryMergeNewMap(*frame, result);
   }
   if (result.jump_refused) {
     ++counts_.jumps_refused;
@@ -317,24 +317,24 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   return result;
 }
 
-bool SlamSystem::TryMergeNewMap(const Frame& frame, const TrackingResult& result) {
-  if (++frames_in_new_map_ % options_.merge_every_frames != 0 || !result.cam_from_world) return false;
+void SlamSystem::TryMergeNewMap(const Frame& frame, const TrackingResult& result) {
+  if (++frames_in_new_map_ % options_.merge_every_frames != 0 || !result.cam_from_world) return;
   const Stopwatch watch;
   const std::optional<Relocalization> found = tracker_.FindInOlderMaps(frame);
   timings_.Add("merge_attempt", watch.ElapsedMs());
-  if (!found) return false;
+  if (!found) return;
   const KeyFrameId origin = *tracker_.new_map_origin();
   // cam_from_old_world = cam_from_new_world * new_world_from_old_world.
   const SE3d new_from_old = result.cam_from_world->Inverse() * found->cam_from_world;
   // One relocalization may be wrong (a kitchen has many similar cupboards)
   // and a wrong merge wrecks both maps: two in a row must agree.
   const std::optional<SE3d> previous = std::exchange(pending_merge_, new_from_old);
-  if (!previous) return false;
+  if (!previous) return;
   const SE3d disagreement = *previous * new_from_old.Inverse();
   constexpr double kRadToDeg = 180.0 / std::numbers::pi;
   if (disagreement.translation().norm() > options_.merge_agreement_m ||
       disagreement.so3().Log().norm() * kRadToDeg > options_.merge_agreement_deg) {
-    return false;
+    return;
   }
   {
     const PauseGate::Hold paused = mapper_.Pause();  // its bundle would write back poses from before
@@ -350,7 +350,6 @@ bool SlamSystem::TryMergeNewMap(const Frame& frame, const TrackingResult& result
   spdlog::info("t={:.6f}: the map started at keyframe {} merged into the older map at keyframe {} ({} inliers; "
                "moved {:.3f} m, {:.2f} deg)", frame.timestamp(), origin, found->keyframe, found->inliers,
                new_from_old.translation().norm(), new_from_old.so3().Log().norm() * kRadToDeg);
-  return true;
 }
 
 void SlamSystem::LogStateChange(const TrackingResult& result, double timestamp) {

@@ -156,6 +156,11 @@ struct RunStats {
   LoopClosingStats loop;
   DynamicStats dynamic;
   std::map<std::string, TimingSummary> timing_ms;  // per stage
+
+  int frames_posed() const { return frames_tracked + frames_coasted; }
+  int frames_without_pose() const { return frames_lost + frames_waiting; }
+  // PoseSource::kTracked: tracked, neither relocalized nor in a new map.
+  int frames_tracked_source() const { return frames_tracked - relocalizations - frames_new_map; }
 };
 
 class SlamSystem {
@@ -239,9 +244,9 @@ class SlamSystem {
   KeyFrameHooks MappingHooks();
   // Tracking in a new map: every merge_every_frames-th frame is relocalized
   // in the older maps; when that succeeds, the new map is moved onto the
-  // older one (local mapping paused) and tracking goes on there. True when
-  // merged.
-  bool TryMergeNewMap(const Frame& frame, const TrackingResult& result);
+  // older one (local mapping paused) and tracking goes on there. The
+  // merged frame counts as tracked.
+  void TryMergeNewMap(const Frame& frame, const TrackingResult& result);
 
   CameraIntrinsics camera_;
   SystemOptions options_;

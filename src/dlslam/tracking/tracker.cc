@@ -226,7 +226,6 @@ bool Tracker::StartMap(const std::shared_ptr<const Frame>& frame, const SE3d& po
   RememberPose(pose, reference_keyframe_, map_->Generation());
   last_timestamp_ = frame->timestamp();
   velocity_.reset();
-  result->state = TrackingState::kOk;
   result->cam_from_world = pose;
   result->cam_from_reference = SE3d::Identity();
   result->new_keyframe = true;
