@@ -32,6 +32,7 @@ nlohmann::ordered_json DynamicReport(const RunStats& stats) {
   j["movable_segments_dropped"] = d.movable_segments_dropped;
   j["inverted_checks_tried"] = d.inverted_checks_tried;
   j["inverted_checks_resolved"] = d.inverted_checks_resolved;
+  j["geometry_overruled"] = d.geometry_overruled;
   j["geometry_ms"] = StageSummary(stats, "geometry");
   j["semantic_ms"] = StageSummary(stats, "semantic");
   j["semantic_wait_ms"] = StageSummary(stats, "semantic_wait");
@@ -114,6 +115,9 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
   j["maps_merged"] = stats.maps_merged;
   j["relocalizations"] = stats.relocalizations;
   j["jumps_refused"] = stats.jumps_refused;
+  j["keyframes_held_for_masks"] = {{"held", stats.keyframes_held},
+                                   {"dropped", stats.keyframes_held_dropped},
+                                   {"keypoints_masked", stats.keyframe_keypoints_masked_late}};
   j["loops_closed"] = stats.loop.loops_closed;
   j["frames_waiting"] = stats.frames_waiting;
   j["keyframes"] = stats.keyframes;

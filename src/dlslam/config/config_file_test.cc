@@ -115,6 +115,11 @@ TEST_F(ConfigFileTest, MistakesAreErrorsWithTheirLine) {
               HasSubstr("c.yaml:2: tracker.new_map_after_lost_frames: out of range"));
   EXPECT_THAT(Error("merge_every_frames: 0\n"), HasSubstr("c.yaml:1: merge_every_frames: out of range"));
   EXPECT_THAT(Error("merge_agreement_deg: -3\n"), HasSubstr("c.yaml:1: merge_agreement_deg: out of range"));
+  // Geometry overruled, keyframes held for their masks.
+  EXPECT_THAT(Error("dynamic:\n  max_geometry_share_of_prior_static: 0\n"),
+              HasSubstr("c.yaml:2: dynamic.max_geometry_share_of_prior_static: out of range"));
+  EXPECT_THAT(Error("semantic:\n  keyframe_mask_max_wait_frames: -1\n"),
+              HasSubstr("c.yaml:2: semantic.keyframe_mask_max_wait_frames: out of range"));
 }
 
 TEST_F(ConfigFileTest, TheReportJsonIsNested) {

@@ -219,6 +219,8 @@ void Visit(DynamicOptions& o, V& v) {
   v.Value("cull_vanished_points", o.cull_vanished_points, {"", "remove map points geometry sees gone"});
   v.Value("resolve_inverted_check", o.resolve_inverted_check, {"", "repeat an inverted-looking check with the movers' pose"});
   v.Value("inverted_check_min_share", o.inverted_check_min_share, {"", "of the image marked before trying"});
+  v.Value("max_geometry_share_of_prior_static", o.max_geometry_share_of_prior_static,
+          {"", "full: geometry taking more of what the prior left is overruled"});
 }
 
 void Visit(SemanticThreadOptions& o, V& v) {
@@ -244,6 +246,10 @@ void Visit(SemanticThreadOptions& o, V& v) {
   v.Value("carry_grow_px", o.carry_grow_px, {"px/frame", "asynchronous: growth of a carried mask per frame of age"});
   v.Value("max_carry_grow_px", o.max_carry_grow_px, {"px", "asynchronous: largest growth"});
   v.Value("wait_when_removed_share", o.wait_when_removed_share, {"", "asynchronous: wait after a frame that lost this share"});
+  v.Value("keyframes_wait_for_own_masks", o.keyframes_wait_for_own_masks,
+          {"", "asynchronous: a keyframe enters the map only after its own masks"});
+  v.Value("keyframe_mask_max_wait_frames", o.keyframe_mask_max_wait_frames,
+          {"frames", "asynchronous: then the tracker waits for the keyframe's masks"});
 }
 
 void Visit(LoopClosingOptions& o, V& v) {

@@ -41,16 +41,18 @@ std::shared_future<SegmentationResult> SegmentationWorker::Submit(cv::Mat bgr, l
   return future;
 }
 
-bool SegmentationWorker::TrySubmit(cv::Mat bgr, long frame_id) {
+std::optional<std::shared_future<SegmentationResult>> SegmentationWorker::TrySubmit(cv::Mat bgr, long frame_id) {
   DLSLAM_CHECK(!stopping_.load(), "segmentation worker is stopped; no more frames are accepted");
   Job job;
   job.bgr = std::move(bgr);
   job.index = submitted_;
   job.segment = true;  // a skipped frame is simply not segmented
   job.publish_as = frame_id;
-  if (!queue_.TryPush(std::move(job))) return false;
+  std::shared_future<SegmentationResult> future = job.promise.get_future().share();
+  // Only this thread pushes, so a queue seen empty stays free for the push.
+  if (queue_.size() > 0 || !queue_.TryPush(std::move(job))) return std::nullopt;
   ++submitted_;
-  return true;
+  return future;
 }
 
 std::optional<SegmentationWorker::Published> SegmentationWorker::Latest() const {

@@ -56,11 +56,14 @@ class SegmentationWorker {
   // `publish_as` >= 0: the result is also published for Latest() under that id.
   std::shared_future<SegmentationResult> Submit(cv::Mat bgr, long publish_as = -1);
 
-  // Never blocks: queues the frame for segmentation when the queue has room,
-  // else returns false and the frame is skipped (the network is behind: no
-  // latency added). Its result is published for Latest(), not returned.
-  // `frame_id` names it there. Throws dlslam::Error after Stop().
-  bool TrySubmit(cv::Mat bgr, long frame_id);
+  // Never blocks: queues the frame for segmentation when no other frame
+  // waits (the network is free or finishing one), else returns false and the
+  // frame is skipped (the network is behind: no latency added). A larger
+  // queue leaves room for Submit's frames (keyframes that must have their
+  // own masks) beside at most one of these. The result is published for
+  // Latest() under `frame_id`, and returned to whoever wants this frame's
+  // own masks after all. Throws dlslam::Error after Stop().
+  std::optional<std::shared_future<SegmentationResult>> TrySubmit(cv::Mat bgr, long frame_id);
 
   struct Published {
     long frame_id = -1;

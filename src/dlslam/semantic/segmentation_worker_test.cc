@@ -167,6 +167,37 @@ TEST(SegmentationWorker, PropagationRefusesAFrameOfAnotherSize) {
   }
 }
 
+TEST(SegmentationWorker, TrySubmitSkipsWhileAFrameWaitsAndLatestPublishesTheNewest) {
+  FakeSegmenter::Shared shared;
+  shared.gate_open = false;
+  SegmentationWorkerOptions options;
+  options.queue_capacity = 2;  // room for a Submit beside one TrySubmit
+  SegmentationWorker worker(std::make_unique<FakeSegmenter>(&shared), options);
+  EXPECT_FALSE(worker.Latest().has_value());
+  ASSERT_TRUE(worker.TrySubmit(Frame(1), 101).has_value());
+  {
+    std::unique_lock lock(shared.mutex);
+    shared.changed.wait(lock, [&] { return shared.started == 1; });  // frame 1 is running
+  }
+  const auto second = worker.TrySubmit(Frame(2), 102);  // waits behind it
+  ASSERT_TRUE(second.has_value());
+  EXPECT_FALSE(worker.TrySubmit(Frame(3), 103).has_value());  // one waits already: skipped
+  auto keyframe = worker.Submit(Frame(4), 104);    // a Submit still gets the free slot
+  {
+    std::lock_guard lock(shared.mutex);
+    shared.gate_open = true;
+  }
+  shared.changed.notify_all();
+  EXPECT_EQ(second->get().dynamic_mask.at<uchar>(15, 2), 255);
+  EXPECT_EQ(keyframe.get().dynamic_mask.at<uchar>(15, 4), 255);
+  const auto latest = worker.Latest();
+  ASSERT_TRUE(latest.has_value());
+  EXPECT_EQ(latest->frame_id, 104);
+  EXPECT_EQ(latest->result.dynamic_mask.at<uchar>(15, 4), 255);
+  worker.Stop();
+  EXPECT_EQ(shared.seen, (std::vector<int>{1, 2, 4}));
+}
+
 TEST(SegmentationWorker, RefusesBadOptions) {
   FakeSegmenter::Shared shared;
   SegmentationWorkerOptions options;

@@ -32,6 +32,9 @@ void DynamicOptions::Check() const {
   fusion.Check();
   DLSLAM_CHECK(inverted_check_min_share > 0 && inverted_check_min_share <= 1,
                "DynamicOptions::inverted_check_min_share {} outside (0, 1]", inverted_check_min_share);
+  DLSLAM_CHECK(max_geometry_share_of_prior_static > 0 && max_geometry_share_of_prior_static <= 1,
+               "DynamicOptions::max_geometry_share_of_prior_static {} outside (0, 1]",
+               max_geometry_share_of_prior_static);
 }
 
 }  // namespace dlslam

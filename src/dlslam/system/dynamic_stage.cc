@@ -72,6 +72,9 @@ DynamicRemoval DynamicStage::Process(const Frame& frame, const cv::Mat& depth, c
     if (options_.mode == DynamicMode::kGeometry) fusion.policy = dynamic::FusionPolicy::kGeometryOnly;
     int movables_dropped = 0;
     removal.mask = dynamic::FuseDynamicMasks(prior, geometry, fusion, &movables_dropped);
+    if (options_.mode == DynamicMode::kFull && !geometry.dynamic_mask.empty()) {
+      OverruleFailedGeometry(frame, prior, fusion, &removal.mask);
+    }
     stats_.movable_segments_dropped += movables_dropped;
   }
   removal.keypoints = removal.mask.empty() ? std::vector<bool>(frame.size(), false) : frame.OnMask(removal.mask);
@@ -79,6 +82,21 @@ DynamicRemoval DynamicStage::Process(const Frame& frame, const cv::Mat& depth, c
   stats_.keypoints_removed += static_cast<std::int64_t>(removal.count);
   if (!inputs.moving_truth.empty()) CountAgainstTruth(frame, removal.keypoints, inputs.moving_truth);
   return removal;
+}
+
+void DynamicStage::OverruleFailedGeometry(const Frame& frame, const dynamic::SemanticMasks& prior,
+                                          const dynamic::FusionOptions& fusion, cv::Mat* fused) {
+  if (prior.dynamic.empty() || options_.max_geometry_share_of_prior_static >= 1 || frame.size() == 0) return;
+  const auto static_left = [&frame](const cv::Mat& mask) {
+    const std::vector<bool> on = frame.OnMask(mask);
+    return static_cast<double>(std::count(on.begin(), on.end(), false));
+  };
+  cv::Mat prior_only = dynamic::FuseDynamicMasks({prior.dynamic, {}}, {}, fusion);
+  const double left_by_prior = static_left(prior_only);
+  const double taken_by_geometry = left_by_prior - static_left(*fused);
+  if (taken_by_geometry <= options_.max_geometry_share_of_prior_static * left_by_prior) return;
+  *fused = std::move(prior_only);
+  ++stats_.geometry_overruled;
 }
 
 dynamic::SemanticMasks DynamicStage::SemanticPrior(const DynamicInputs& inputs) {

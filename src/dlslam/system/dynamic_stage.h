@@ -51,6 +51,9 @@ struct DynamicStats {
   // keypoints, and those where that labelling won (DynamicOptions::resolve_inverted_check).
   std::int64_t inverted_checks_tried = 0;
   std::int64_t inverted_checks_resolved = 0;
+  // Mode full: frames whose geometric mask was set aside because it took
+  // most of what the prior left (DynamicOptions::max_geometry_share_of_prior_static).
+  std::int64_t geometry_overruled = 0;
   // Per keypoint of every frame with ground truth: removed and moving (true
   // positive), removed and still (false positive), kept and moving (false negative).
   std::int64_t frames_with_truth = 0;
@@ -95,6 +98,11 @@ class DynamicStage {
   // `estimate_knows_movers`: the estimate already ignored a semantic prior's
   // keypoints, so the labelling is not checked for inversion.
   dynamic::GeometryResult DetectGeometrically(const Frame& frame, const cv::Mat& depth, bool estimate_knows_movers);
+  // Mode full: replaces `fused` (prior and geometry) by the prior's removal
+  // alone when geometry took too much of what the prior left
+  // (DynamicOptions::max_geometry_share_of_prior_static).
+  void OverruleFailedGeometry(const Frame& frame, const dynamic::SemanticMasks& prior,
+                              const dynamic::FusionOptions& fusion, cv::Mat* fused);
   void CountAgainstTruth(const Frame& frame, const std::vector<bool>& removed, const cv::Mat& truth);
 
   DynamicOptions options_;

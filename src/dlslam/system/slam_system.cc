@@ -3,7 +3,9 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <future>
 #include <numbers>
 #include <utility>
 
@@ -126,6 +128,9 @@ void SemanticThreadOptions::Check() const {
                carry_grow_px, max_carry_grow_px);
   DLSLAM_CHECK(wait_when_removed_share > 0 && wait_when_removed_share <= 1,
                "SemanticThreadOptions::wait_when_removed_share {} outside (0, 1]", wait_when_removed_share);
+  DLSLAM_CHECK(keyframe_mask_max_wait_frames >= 0 && keyframe_mask_max_wait_frames <= 100,
+               "SemanticThreadOptions::keyframe_mask_max_wait_frames {} outside [0, 100]",
+               keyframe_mask_max_wait_frames);
 }
 
 void SystemOptions::Check() const {
@@ -163,9 +168,10 @@ SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& opti
     // Loads the model now: a missing or broken file is an InputError here,
     // not on the first frame.
     semantic::SegmentationWorkerOptions worker = options_.semantic.worker;
-    // Asynchronous: one frame waiting at most, so that the newest mask is
-    // at most one network run older than the frame being segmented.
-    if (!options_.semantic.wait_for_masks) worker.queue_capacity = 1;
+    // Asynchronous: one skippable frame waiting at most (TrySubmit), so that
+    // the newest mask is at most one network run older than the frame being
+    // segmented, and room for a held keyframe's frame beside it.
+    if (!options_.semantic.wait_for_masks) worker.queue_capacity = 2;
     segmentation_ = std::make_unique<semantic::SegmentationWorker>(semantic::MakeSegmenter(options_.semantic.segmenter),
                                                                    worker);
     if (!options_.semantic.wait_for_masks) warper_ = std::make_unique<dynamic::MaskWarper>(camera_);
@@ -198,10 +204,13 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   Stopwatch total;
   DynamicInputs inputs = dynamic;
   const long frame_id = counts_.frames;
+  cv::Mat bgr;  // what the network sees of this frame
+  std::optional<std::shared_future<semantic::SegmentationResult>> own_masks;  // asynchronous, if it is segmented
+  bool masks_carried = false;  // the frame uses an earlier frame's masks
   if (segmentation_ && !inputs.semantic_prior) {
     // Handed to the semantic thread before ORB extraction. Asynchronous, the
     // worker may read the frame after TrackRgbd returns: it gets a copy.
-    cv::Mat bgr = colour;
+    bgr = colour;
     if (colour.type() == CV_8UC1) {
       cv::cvtColor(colour, bgr, cv::COLOR_GRAY2BGR);
     } else if (warper_) {
@@ -216,7 +225,9 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     const bool crowded = last_removed_share_ >= options_.semantic.wait_when_removed_share ||
                          tracker_.state() != TrackingState::kOk;
     if (warper_ && !crowded) {
-      segmentation_->TrySubmit(bgr, frame_id);  // a busy network skips the frame
+      ReleaseHeldKeyFrame(/*wait=*/false);
+      own_masks = segmentation_->TrySubmit(bgr, frame_id);  // a busy network skips the frame
+      masks_carried = true;
       inputs.semantic_prior = [this, frame_id] { return CarriedMasks(frame_id); };
     } else {
       // The dynamic stage waits for the masks only after ORB extraction.
@@ -259,9 +270,27 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   last_view_.kept.clear();
   for (const FrameKeypoint& k : frame->keypoints()) last_view_.kept.emplace_back(k.raw_uv.x(), k.raw_uv.y());
   watch = Stopwatch();
-  const TrackingResult result = tracker_.Track(frame);
+  // A keyframe from carried masks waits for its own (ReleaseHeldKeyFrame).
+  // A frame that waited for its own masks has the held keyframe's too (they
+  // were queued before): it goes into the map before this frame is tracked.
+  if (!masks_carried) ReleaseHeldKeyFrame(/*wait=*/true);
+  const TrackingResult result =
+      tracker_.Track(frame, /*hold_keyframe=*/masks_carried && options_.semantic.keyframes_wait_for_own_masks);
   timings_.Add("tracking", watch.ElapsedMs());
   if (warper_ && !recent_.empty() && recent_.back().id == frame_id) recent_.back().cam_from_world = result.cam_from_world;
+  if (result.held_keyframe && !held_keyframe_) {  // one at a time: a second one is simply not made
+    HeldKeyFrame held;
+    held.candidate = *result.held_keyframe;
+    held.masks = own_masks ? *own_masks : segmentation_->Submit(bgr, frame_id);
+    held.timestamp = timestamp;
+    if (options_.keep_keyframe_images) {
+      held.colour = colour.clone();
+      held.depth = depth.clone();
+      held.removed = removal.mask.clone();
+    }
+    held_keyframe_ = std::move(held);
+    ++counts_.keyframes_held;
+  }
   // Attempts on frames without features (black, covered) cost nothing and
   // would only pull the median down.
   if (result.relocalization_ms >= 0 && frame->size() > 0) {
@@ -281,14 +310,7 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     ++counts_.jumps_refused;
     spdlog::debug("t={:.6f}: tracked pose refused, too far from the motion model", timestamp);
   }
-  if (result.new_keyframe && options_.keep_keyframe_images) {
-    KeepKeyFrameImages(result.reference_keyframe, timestamp, colour, depth, removal.mask);
-  }
-  if (result.new_keyframe) {
-    watch = Stopwatch();
-    mapper_.Enqueue(result.reference_keyframe);  // blocks only while the queue is full
-    timings_.Add("keyframe_handover", watch.ElapsedMs());
-  }
+  if (result.new_keyframe) KeyFrameMade(result.reference_keyframe, timestamp, colour, depth, removal.mask);
   PoseSource source = PoseSource::kNone;
   switch (result.state) {
     case TrackingState::kOk:
@@ -315,6 +337,45 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   sources_.push_back({timestamp, source});
   timings_.Add("frame_total", total.ElapsedMs());
   return result;
+}
+
+void SlamSystem::KeyFrameMade(KeyFrameId id, double timestamp, const cv::Mat& colour, const cv::Mat& depth,
+                              const cv::Mat& removed) {
+  if (options_.keep_keyframe_images) KeepKeyFrameImages(id, timestamp, colour, depth, removed);
+  const Stopwatch watch;
+  mapper_.Enqueue(id);  // blocks only while the queue is full
+  timings_.Add("keyframe_handover", watch.ElapsedMs());
+}
+
+void SlamSystem::ReleaseHeldKeyFrame(bool wait) {
+  if (!held_keyframe_) return;
+  HeldKeyFrame& held = *held_keyframe_;
+  const bool ready = held.masks.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+  if (!ready && !wait && held.frames_waited++ < options_.semantic.keyframe_mask_max_wait_frames) return;
+  if (!ready) {
+    const Stopwatch watch;
+    held.masks.wait();
+    timings_.Add("keyframe_mask_wait", watch.ElapsedMs());
+  }
+  // Taken out of the slot first: a segmentation error propagates (as a
+  // frame's own would) and leaves no keyframe behind.
+  const HeldKeyFrame taken = std::move(*held_keyframe_);
+  held_keyframe_.reset();
+  const cv::Mat& mask = taken.masks.get().dynamic_mask;
+  std::vector<bool> keep(taken.candidate.frame->size(), true);
+  if (!mask.empty()) {
+    keep = taken.candidate.frame->OnMask(mask);
+    keep.flip();
+  }
+  counts_.keyframe_keypoints_masked_late += std::count(keep.begin(), keep.end(), false);
+  const std::optional<KeyFrameId> id = tracker_.InsertHeldKeyFrame(taken.candidate, keep);
+  if (!id) {
+    ++counts_.keyframes_held_dropped;
+    return;
+  }
+  cv::Mat removed = taken.removed;
+  if (!removed.empty() && !mask.empty()) removed |= mask;
+  KeyFrameMade(*id, taken.timestamp, taken.colour, taken.depth, removed);
 }
 
 void SlamSystem::TryMergeNewMap(const Frame& frame, const TrackingResult& result) {
@@ -448,6 +509,11 @@ dense::TsdfVolume SlamSystem::FuseDenseMap(const dense::TsdfOptions& options, co
 
 void SlamSystem::Shutdown() {
   if (shut_down_) return;
+  try {
+    ReleaseHeldKeyFrame(/*wait=*/true);  // the last keyframe belongs in the map
+  } catch (const std::exception& e) {
+    spdlog::warn("the last keyframe is left out of the map: its segmentation failed: {}", e.what());
+  }
   if (segmentation_) segmentation_->Stop();
   mapper_.Stop();
   if (loop_closer_) loop_closer_->Stop();

@@ -70,6 +70,15 @@ struct SemanticThreadOptions {
   // 0.016-0.058 m with this at 0.75, 0.016-0.027 m at 0.6 where most
   // frames wait). (0, 1]; 1 = only when everything was removed.
   double wait_when_removed_share = 0.75;
+  // Asynchronous only: a keyframe made from a frame with carried masks is
+  // held back from the map until that frame's own masks arrive (it is
+  // segmented, unless it was already), and only its keypoints outside them
+  // enter the map; tracking goes on meanwhile. After
+  // keyframe_mask_max_wait_frames further frames the tracker waits for them
+  // [frames; the network takes about one frame's time, and may be finishing
+  // another].
+  bool keyframes_wait_for_own_masks = true;
+  int keyframe_mask_max_wait_frames = 3;
 
   void Check() const;
 };
@@ -150,6 +159,13 @@ struct RunStats {
   int frames_reextracted = 0;  // ORB features extracted again outside the removed regions
   int relocalizations = 0;  // lost -> tracked again through relocalization
   int jumps_refused = 0;    // tracked poses refused as too far from the motion model (coasted instead)
+  // Asynchronous masks: keyframes held until their own masks came
+  // (SemanticThreadOptions::keyframe_mask_max_wait_frames), those dropped
+  // then (the map moved meanwhile, or too few matches outside the masks),
+  // and the keypoints their own masks took out.
+  int keyframes_held = 0;
+  int keyframes_held_dropped = 0;
+  std::int64_t keyframe_keypoints_masked_late = 0;
   std::size_t keyframes = 0;
   std::size_t map_points = 0;
   LocalMappingStats mapping;
@@ -271,6 +287,21 @@ class SlamSystem {
     std::optional<SE3d> cam_from_world;
   };
   dynamic::SemanticMasks CarriedMasks(long frame_id);
+  // A keyframe waiting for its frame's own masks (one at a time).
+  struct HeldKeyFrame {
+    KeyFrameCandidate candidate;
+    std::shared_future<semantic::SegmentationResult> masks;
+    int frames_waited = 0;
+    double timestamp = 0.0;
+    cv::Mat colour, depth, removed;  // for keep_keyframe_images
+  };
+  // Inserts the held keyframe when its masks are there, or, with `wait` or
+  // after keyframe_mask_max_wait_frames, once they are.
+  void ReleaseHeldKeyFrame(bool wait);
+  // The keyframe enters the map: images kept, handed to local mapping.
+  void KeyFrameMade(KeyFrameId id, double timestamp, const cv::Mat& colour, const cv::Mat& depth,
+                    const cv::Mat& removed);
+  std::optional<HeldKeyFrame> held_keyframe_;
   std::deque<RecentFrame> recent_;
   std::unique_ptr<dynamic::MaskWarper> warper_;
   long last_timed_mask_ = -1;  // the newest carried mask's frame, timed as "semantic"

@@ -11,6 +11,8 @@ namespace dlslam {
 
 namespace {
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+// A keyframe needs this many tracked points (ORB-SLAM: more than 15).
+constexpr int kMinKeyFrameMatches = 16;
 }  // namespace
 
 void TrackerOptions::Check() const {
@@ -59,7 +61,7 @@ Tracker::Tracker(const TrackerOptions& options, Map* map, const place::KeyFrameI
   if (index != nullptr) relocalizer_.emplace(options_.relocalization, map_, index);
 }
 
-TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
+TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool hold_keyframe) {
   DLSLAM_CHECK(frame != nullptr);
   TrackingResult result;
   if (state_ == TrackingState::kNotInitialized) {
@@ -157,8 +159,12 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame) {
   // so it must not become a keyframe.
   const bool map_moved = map_->Generation() != generation;
   if (!map_moved && NeedNewKeyFrame(*frame, matches, reference)) {
-    reference_keyframe_ = InsertKeyFrame(frame, pose, matches);
-    result.new_keyframe = true;
+    if (hold_keyframe) {
+      result.held_keyframe = KeyFrameCandidate{frame, pose, matches, generation};
+    } else {
+      reference_keyframe_ = InsertKeyFrame(frame, pose, matches);
+      result.new_keyframe = true;
+    }
   }
   RememberPose(pose, reference_keyframe_, generation);
   last_timestamp_ = frame->timestamp();
@@ -345,11 +351,12 @@ bool Tracker::NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>&
   const bool need_close = close_tracked < 100 && close_untracked > 70;
   const bool weak = tracked < options_.keyframe_tracked_ratio * reference_tracked || need_close;
   const bool timeout = frames_since_keyframe_ >= options_.max_frames_between_keyframes;
-  return (weak || timeout) && tracked > 15;
+  return (weak || timeout) && tracked >= kMinKeyFrameMatches;
 }
 
 KeyFrameId Tracker::InsertKeyFrame(const std::shared_ptr<const Frame>& frame, const SE3d& pose,
-                                   const std::vector<MapPointId>& matches, bool all_depth_points) {
+                                   const std::vector<MapPointId>& matches, bool all_depth_points,
+                                   bool search_its_points) {
   const KeyFrameId kf = map_->AddKeyFrame(frame, pose);
   for (std::size_t i = 0; i < matches.size(); ++i) {
     if (matches[i] != kNoId) map_->AddObservation(matches[i], kf, static_cast<int>(i));
@@ -371,7 +378,24 @@ KeyFrameId Tracker::InsertKeyFrame(const std::shared_ptr<const Frame>& frame, co
   map_->UpdateConnections(kf);
   frames_since_keyframe_ = 0;
   // The next frame searches the keyframe's points, old and new.
-  last_matches_ = map_->GetKeyFrame(kf)->points;
+  if (search_its_points) last_matches_ = map_->GetKeyFrame(kf)->points;
+  return kf;
+}
+
+std::optional<KeyFrameId> Tracker::InsertHeldKeyFrame(const KeyFrameCandidate& candidate, const std::vector<bool>& keep) {
+  DLSLAM_CHECK(candidate.frame != nullptr && keep.size() == candidate.frame->size() &&
+                   candidate.matches.size() == keep.size(),
+               "held keyframe: {} keep flags for {} keypoints", keep.size(), candidate.matches.size());
+  if (map_->Generation() != candidate.generation) return std::nullopt;
+  std::vector<MapPointId> matches;
+  for (std::size_t i = 0; i < keep.size(); ++i) {
+    if (keep[i]) matches.push_back(candidate.matches[i]);
+  }
+  if (CountMatches(matches) < kMinKeyFrameMatches) return std::nullopt;
+  const auto frame = std::make_shared<const Frame>(candidate.frame->Subset(keep));
+  const KeyFrameId kf = InsertKeyFrame(frame, candidate.cam_from_world, matches, /*all_depth_points=*/false,
+                                       /*search_its_points=*/false);
+  reference_keyframe_ = kf;
   return kf;
 }
 

@@ -98,6 +98,16 @@ struct TrackerOptions {
   void Check() const;
 };
 
+// A keyframe the tracker wanted but held back (Track with hold_keyframe):
+// the caller inserts it later with InsertHeldKeyFrame, e.g. once the frame's
+// own segmentation has arrived.
+struct KeyFrameCandidate {
+  std::shared_ptr<const Frame> frame;
+  SE3d cam_from_world;
+  std::vector<MapPointId> matches;  // per keypoint of frame; kNoId if none
+  std::uint64_t generation = 0;     // Map::Generation() when it was tracked
+};
+
 // kCoasting: the frame has a pose from the motion model, not confirmed by
 // the map (too few inliers); no keyframe is made from it.
 enum class TrackingState { kNotInitialized, kOk, kCoasting, kLost };
@@ -123,6 +133,9 @@ struct TrackingResult {
   bool jump_refused = false;
   // Lost for too long: this frame started a new map (its first keyframe).
   bool new_map = false;
+  // Track(frame, /*hold_keyframe=*/true) on a frame that should become a
+  // keyframe: the keyframe not made (new_keyframe stays false).
+  std::optional<KeyFrameCandidate> held_keyframe;
 };
 
 class Tracker {
@@ -132,7 +145,15 @@ class Tracker {
   Tracker(const TrackerOptions& options, Map* map, const place::KeyFrameIndex* index = nullptr);
 
   // Tracks one frame (its static keypoints: Frame::WithoutMasked).
-  TrackingResult Track(const std::shared_ptr<const Frame>& frame);
+  // `hold_keyframe`: a keyframe this frame would make is returned as
+  // TrackingResult::held_keyframe instead (a map's first keyframe never is).
+  TrackingResult Track(const std::shared_ptr<const Frame>& frame, bool hold_keyframe = false);
+  // Makes a held keyframe of the keypoints of `candidate` that `keep` marks
+  // (e.g. those outside the frame's own person mask); the frames tracked
+  // since go on as they were. nullopt when the map moved since it was
+  // tracked (loop closing, a merge: its pose is from before) or too few of
+  // its matches are kept.
+  std::optional<KeyFrameId> InsertHeldKeyFrame(const KeyFrameCandidate& candidate, const std::vector<bool>& keep);
 
   // A first pose for the next frame, without changing the tracker: the
   // constant-velocity guess refined on the frame's keypoints
@@ -201,8 +222,12 @@ class Tracker {
   // `generation`: the map's when the pose was computed.
   void RememberPose(const SE3d& pose, KeyFrameId reference, std::uint64_t generation);
   bool NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches, KeyFrameId reference) const;
+  // Adds the keyframe and its new points; the next frame searches its points
+  // unless `search_its_points` is false (a held keyframe, older than the
+  // last frame).
   KeyFrameId InsertKeyFrame(const std::shared_ptr<const Frame>& frame, const SE3d& pose,
-                            const std::vector<MapPointId>& matches, bool all_depth_points = false);
+                            const std::vector<MapPointId>& matches, bool all_depth_points = false,
+                            bool search_its_points = true);
 
   TrackerOptions options_;
   Map* map_;

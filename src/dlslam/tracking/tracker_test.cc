@@ -63,6 +63,53 @@ TEST(Tracker, MakesNoKeyFrameWhileMappingIsBackedUp) {
   EXPECT_GT(keyframes_free, 1);  // the initial one, and more once the backlog is gone
 }
 
+// A keyframe held back (its frame waits for its own segmentation) is made
+// later from the keypoints the caller keeps, at the pose it was tracked at,
+// while the frames between are tracked as usual; once the map has moved it
+// is refused (its pose is from before).
+TEST(Tracker, AHeldKeyFrameIsMadeLaterFromTheKeptKeypoints) {
+  const auto scene = testing::LandmarkScene::Room(6000, 3);
+  Map map;
+  Tracker tracker(TrackerOptions(), &map);
+  ASSERT_TRUE(tracker.Track(scene.MakeFrame(CamFromWorld(0), 0.0, 100)).new_keyframe);  // a first keyframe is never held
+  std::optional<KeyFrameCandidate> held;
+  int i = 1;
+  for (; i < 150 && !held; ++i) {
+    const TrackingResult r = tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i), /*hold_keyframe=*/true);
+    ASSERT_EQ(r.state, TrackingState::kOk) << "frame " << i;
+    EXPECT_FALSE(r.new_keyframe);
+    held = r.held_keyframe;
+  }
+  ASSERT_TRUE(held.has_value());
+  EXPECT_EQ(map.NumKeyFrames(), 1u);
+  const int held_at = i - 1;
+  // Two more frames before the masks "arrive".
+  for (int k = 0; k < 2; ++k, ++i) {
+    ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i), true).state, TrackingState::kOk);
+  }
+  // The right half of the image was a person.
+  std::vector<bool> keep(held->frame->size());
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < keep.size(); ++k) kept += keep[k] = held->frame->keypoint(k).raw_uv.x() < 320;
+  const std::optional<KeyFrameId> id = tracker.InsertHeldKeyFrame(*held, keep);
+  ASSERT_TRUE(id.has_value());
+  const std::optional<KeyFrameSnapshot> kf = map.GetKeyFrame(*id);
+  ASSERT_TRUE(kf.has_value());
+  EXPECT_EQ(kf->frame->size(), kept);
+  for (std::size_t k = 0; k < kf->frame->size(); ++k) EXPECT_LT(kf->frame->keypoint(k).raw_uv.x(), 320);
+  EXPECT_DOUBLE_EQ(kf->frame->timestamp(), held_at / 30.0);
+  const SE3d truth = CamFromWorld(held_at) * CamFromWorld(0).Inverse();  // keyframe 0 defines the world
+  EXPECT_LT((kf->cam_from_world * truth.Inverse()).Log().norm(), 1e-2);
+  // Tracking goes on from the frames after it.
+  for (int k = 0; k < 5; ++k, ++i) {
+    ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i)).state, TrackingState::kOk);
+  }
+  // Keeping nothing, or after a correction of the map, no keyframe.
+  EXPECT_FALSE(tracker.InsertHeldKeyFrame(*held, std::vector<bool>(keep.size(), false)).has_value());
+  ASSERT_EQ(map.ApplyCorrectedPoses({{*id, SE3d::Exp(Vector6d::Constant(0.01)) * kf->cam_from_world}}), 1);
+  EXPECT_FALSE(tracker.InsertHeldKeyFrame(*held, keep).has_value());
+}
+
 TEST(Tracker, WaitsForDepthThenInitializes) {
   const auto scene = testing::LandmarkScene::Room(3000, 4);
   Map map;
