@@ -57,8 +57,8 @@ class SegmentationWorker {
   std::shared_future<SegmentationResult> Submit(cv::Mat bgr, long publish_as = -1);
 
   // Never blocks: queues the frame for segmentation when no other frame
-  // waits (the network is free or finishing one), else returns false and the
-  // frame is skipped (the network is behind: no latency added). A larger
+  // waits (the network is free or finishing one), else returns nullopt and
+  // the frame is skipped (the network is behind: no latency added). A larger
   // queue leaves room for Submit's frames (keyframes that must have their
   // own masks) beside at most one of these. The result is published for
   // Latest() under `frame_id`, and returned to whoever wants this frame's

@@ -72,10 +72,10 @@ DynamicRemoval DynamicStage::Process(const Frame& frame, const cv::Mat& depth, c
     if (options_.mode == DynamicMode::kGeometry) fusion.policy = dynamic::FusionPolicy::kGeometryOnly;
     int movables_dropped = 0;
     removal.mask = dynamic::FuseDynamicMasks(prior, geometry, fusion, &movables_dropped);
-    if (options_.mode == DynamicMode::kFull && !geometry.dynamic_mask.empty()) {
-      OverruleFailedGeometry(frame, prior, fusion, &removal.mask);
-    }
-    stats_.movable_segments_dropped += movables_dropped;
+    // An overruled geometry dropped no movable segment either.
+    const bool overruled = options_.mode == DynamicMode::kFull && !geometry.dynamic_mask.empty() &&
+                           OverruleFailedGeometry(frame, prior, fusion, &removal.mask);
+    if (!overruled) stats_.movable_segments_dropped += movables_dropped;
   }
   removal.keypoints = removal.mask.empty() ? std::vector<bool>(frame.size(), false) : frame.OnMask(removal.mask);
   removal.count = static_cast<std::size_t>(std::count(removal.keypoints.begin(), removal.keypoints.end(), true));
@@ -84,9 +84,9 @@ DynamicRemoval DynamicStage::Process(const Frame& frame, const cv::Mat& depth, c
   return removal;
 }
 
-void DynamicStage::OverruleFailedGeometry(const Frame& frame, const dynamic::SemanticMasks& prior,
+bool DynamicStage::OverruleFailedGeometry(const Frame& frame, const dynamic::SemanticMasks& prior,
                                           const dynamic::FusionOptions& fusion, cv::Mat* fused) {
-  if (prior.dynamic.empty() || options_.max_geometry_share_of_prior_static >= 1 || frame.size() == 0) return;
+  if (prior.dynamic.empty() || options_.max_geometry_share_of_prior_static >= 1 || frame.size() == 0) return false;
   const auto static_left = [&frame](const cv::Mat& mask) {
     const std::vector<bool> on = frame.OnMask(mask);
     return static_cast<double>(std::count(on.begin(), on.end(), false));
@@ -94,9 +94,10 @@ void DynamicStage::OverruleFailedGeometry(const Frame& frame, const dynamic::Sem
   cv::Mat prior_only = dynamic::FuseDynamicMasks({prior.dynamic, {}}, {}, fusion);
   const double left_by_prior = static_left(prior_only);
   const double taken_by_geometry = left_by_prior - static_left(*fused);
-  if (taken_by_geometry <= options_.max_geometry_share_of_prior_static * left_by_prior) return;
+  if (taken_by_geometry <= options_.max_geometry_share_of_prior_static * left_by_prior) return false;
   *fused = std::move(prior_only);
   ++stats_.geometry_overruled;
+  return true;
 }
 
 dynamic::SemanticMasks DynamicStage::SemanticPrior(const DynamicInputs& inputs) {

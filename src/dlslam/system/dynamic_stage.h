@@ -100,8 +100,8 @@ class DynamicStage {
   dynamic::GeometryResult DetectGeometrically(const Frame& frame, const cv::Mat& depth, bool estimate_knows_movers);
   // Mode full: replaces `fused` (prior and geometry) by the prior's removal
   // alone when geometry took too much of what the prior left
-  // (DynamicOptions::max_geometry_share_of_prior_static).
-  void OverruleFailedGeometry(const Frame& frame, const dynamic::SemanticMasks& prior,
+  // (DynamicOptions::max_geometry_share_of_prior_static); true if it did.
+  bool OverruleFailedGeometry(const Frame& frame, const dynamic::SemanticMasks& prior,
                               const dynamic::FusionOptions& fusion, cv::Mat* fused);
   void CountAgainstTruth(const Frame& frame, const std::vector<bool>& removed, const cv::Mat& truth);
 

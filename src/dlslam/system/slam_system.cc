@@ -351,7 +351,10 @@ void SlamSystem::ReleaseHeldKeyFrame(bool wait) {
   if (!held_keyframe_) return;
   HeldKeyFrame& held = *held_keyframe_;
   const bool ready = held.masks.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
-  if (!ready && !wait && held.frames_waited++ < options_.semantic.keyframe_mask_max_wait_frames) return;
+  if (!ready && !wait && held.frames_waited < options_.semantic.keyframe_mask_max_wait_frames) {
+    ++held.frames_waited;
+    return;
+  }
   if (!ready) {
     const Stopwatch watch;
     held.masks.wait();
