@@ -376,8 +376,13 @@ void SlamSystem::ReleaseHeldKeyFrame(bool wait) {
     ++counts_.keyframes_held_dropped;
     return;
   }
+  // The dense map leaves out what either removed (the keyframe's own copy).
   cv::Mat removed = taken.removed;
-  if (!removed.empty() && !mask.empty()) removed |= mask;
+  if (removed.empty()) {
+    removed = mask;
+  } else if (!mask.empty()) {
+    removed |= mask;
+  }
   KeyFrameMade(*id, taken.timestamp, taken.colour, taken.depth, removed);
 }
 
