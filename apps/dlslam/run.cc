@@ -17,6 +17,7 @@
 #include "html_report.h"
 #include "live_view.h"
 #include "dlslam/io/file_util.h"
+#include "dlslam/io/frame_prefetcher.h"
 #include "dlslam/io/sequence.h"
 #include "dlslam/io/trajectory_io.h"
 #include "dlslam/synth/actors.h"
@@ -167,8 +168,11 @@ RunOutcome RunSequence(const RunArgs& args) {
     spdlog::info("live view on http://127.0.0.1:{}/", live->port());
   }
   int posed = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const io::FrameLoadResult loaded = sequence.TryLoadFrame(i);
+  // Frames are read ahead in a thread of their own, as a camera delivers them.
+  io::FramePrefetcher frames(sequence, n);
+  while (std::optional<io::FramePrefetcher::Item> item = frames.Next()) {
+    const std::size_t i = item->index;
+    const io::FrameLoadResult& loaded = item->result;
     if (!loaded.ok()) {
       spdlog::warn("frame {} lost: {}", i, loaded.error);
       slam.MarkLost(sequence.frames()[i].timestamp());

@@ -234,7 +234,7 @@ void Visit(SemanticThreadOptions& o, V& v) {
   v.Value("dynamic_classes", o.segmenter.dynamic_classes, {"", "classes that may move (people)"});
   v.Value("movable_classes", o.segmenter.movable_classes, {"", "classes that move when pushed (chairs)"});
   v.Value("dynamic_margin_px", o.segmenter.dynamic_margin_px, {"px", "dilation of the dynamic mask"});
-  v.Value("threads", o.segmenter.threads, {"", "OpenCV inference threads; 0 = its default"});
+  v.Value("threads", o.segmenter.threads, {"", "OpenCV threads, process-wide (1: the system's own threads fill the cores); 0 = OpenCV's default"});
   v.Value("min_image_side", o.segmenter.min_image_side, {"px", "smaller images are refused"});
   v.End();
   v.Begin("worker", "the semantic thread");

@@ -9,13 +9,35 @@
 namespace dlslam::dynamic {
 
 void MaskWarpOptions::Check() const {
-  DLSLAM_CHECK(sample_step_px >= 1, "mask warp: sample_step_px must be >= 1, got {}", sample_step_px);
+  DLSLAM_CHECK(cell_px >= 1 && cell_px <= 64, "mask warp: cell_px must be in [1, 64], got {}", cell_px);
   DLSLAM_CHECK(close_px >= 0, "mask warp: close_px must be >= 0, got {}", close_px);
 }
 
+namespace {
+
+// The pixel at the centre of cell (cx, cy), inside the image.
+cv::Point CellCentre(int cx, int cy, int cell, int width, int height) {
+  return {std::min(width - 1, cx * cell + cell / 2), std::min(height - 1, cy * cell + cell / 2)};
+}
+
+// Radius r [px] in whole cells, rounded up: the carried mask never shrinks.
+int InCells(int r, int cell) { return (r + cell - 1) / cell; }
+
+}  // namespace
+
 MaskWarper::MaskWarper(const CameraIntrinsics& camera, const MaskWarpOptions& options)
-    : camera_(camera), options_(options), rays_(PixelRays(camera)) {
+    : camera_(camera), options_(options) {
   options_.Check();
+  const int cell = options_.cell_px;
+  cells_ = cv::Size((camera.width + cell - 1) / cell, (camera.height + cell - 1) / cell);
+  const std::vector<Eigen::Vector2f> pixel_rays = PixelRays(camera);
+  rays_.reserve(static_cast<std::size_t>(cells_.area()));
+  for (int cy = 0; cy < cells_.height; ++cy) {
+    for (int cx = 0; cx < cells_.width; ++cx) {
+      const cv::Point p = CellCentre(cx, cy, cell, camera.width, camera.height);
+      rays_.push_back(pixel_rays[static_cast<std::size_t>(p.y * camera.width + p.x)]);
+    }
+  }
 }
 
 cv::Mat MaskWarper::Warp(const cv::Mat& mask_s, const cv::Mat& depth_s, const SE3d& t_from_s, int grow_px) const {
@@ -28,17 +50,29 @@ cv::Mat MaskWarper::Warp(const cv::Mat& mask_s, const cv::Mat& depth_s, const SE
   if (has_depth && (depth_s.type() != CV_32FC1 || depth_s.cols != w || depth_s.rows != h)) {
     throw Error(fmt::format("mask warp: depth must be CV_32FC1 {}x{}", w, h));
   }
-  const int step = options_.sample_step_px;
+  const int cell = options_.cell_px;
+  // A cell is masked when any of its pixels is (the area average is > 0).
+  cv::Mat touched = mask_s;
+  if (cell > 1) {
+    cv::Mat binary = mask_s != 0;
+    cv::copyMakeBorder(binary, binary, 0, cells_.height * cell - h, 0, cells_.width * cell - w, cv::BORDER_CONSTANT, 0);
+    cv::resize(binary, touched, cells_, 0, 0, cv::INTER_AREA);
+  }
+  const auto depth_at = [&](int cx, int cy) {
+    const cv::Point p = CellCentre(cx, cy, cell, w, h);
+    const float d = depth_s.at<float>(p.y, p.x);
+    return d > 0 && std::isfinite(d) ? d : 0.0f;
+  };
 
-  // The median depth of the masked pixels stands in where a pixel has none
+  // The median depth of the masked cells stands in where a cell has none
   // (hair, dark clothes, the person's outline on a structured-light sensor).
   std::vector<float> depths;
   if (has_depth) {
-    for (int v = 0; v < h; v += step) {
-      const auto* m = mask_s.ptr<std::uint8_t>(v);
-      const auto* d = depth_s.ptr<float>(v);
-      for (int u = 0; u < w; u += step) {
-        if (m[u] && d[u] > 0 && std::isfinite(d[u])) depths.push_back(d[u]);
+    for (int cy = 0; cy < cells_.height; ++cy) {
+      const auto* m = touched.ptr<std::uint8_t>(cy);
+      for (int cx = 0; cx < cells_.width; ++cx) {
+        if (!m[cx]) continue;
+        if (const float d = depth_at(cx, cy); d > 0) depths.push_back(d);
       }
     }
   }
@@ -48,47 +82,40 @@ cv::Mat MaskWarper::Warp(const cv::Mat& mask_s, const cv::Mat& depth_s, const SE
     fallback = depths[depths.size() / 2];
   }
 
-  cv::Mat warped = cv::Mat::zeros(h, w, CV_8UC1);
-  // A square of side 2 * splat + 1 around (u, v), clipped to the image.
-  const auto mark = [&](int u, int v, int splat) {
-    for (int y = std::max(0, v - splat); y <= std::min(h - 1, v + splat); ++y) {
-      std::uint8_t* row = warped.ptr<std::uint8_t>(y);
-      for (int x = std::max(0, u - splat); x <= std::min(w - 1, u + splat); ++x) row[x] = 255;
-    }
-  };
+  cv::Mat carried = cv::Mat::zeros(cells_, CV_8UC1);
   const Eigen::Matrix3d rotation = t_from_s.rotationMatrix();
   const Eigen::Vector3d translation = t_from_s.translation();
-  const int splat = std::max(1, step / 2);
-  for (int v = 0; v < h; v += step) {
-    const auto* m = mask_s.ptr<std::uint8_t>(v);
-    const float* d = has_depth ? depth_s.ptr<float>(v) : nullptr;
-    for (int u = 0; u < w; u += step) {
-      if (!m[u]) continue;
-      float z = d && d[u] > 0 && std::isfinite(d[u]) ? d[u] : fallback;
-      if (z <= 0) {  // no depth anywhere in the mask: the pixel stays where it was
-        mark(u, v, splat);
+  for (int cy = 0; cy < cells_.height; ++cy) {
+    const auto* m = touched.ptr<std::uint8_t>(cy);
+    for (int cx = 0; cx < cells_.width; ++cx) {
+      if (!m[cx]) continue;
+      float z = has_depth ? depth_at(cx, cy) : 0.0f;
+      if (z <= 0) z = fallback;
+      if (z <= 0) {  // no depth anywhere in the mask: the cell stays where it was
+        carried.at<std::uint8_t>(cy, cx) = 255;
         continue;
       }
-      const Eigen::Vector2f& ray = rays_[static_cast<std::size_t>(v * w + u)];
+      const Eigen::Vector2f& ray = rays_[static_cast<std::size_t>(cy * cells_.width + cx)];
       const Eigen::Vector3d p = rotation * Eigen::Vector3d(ray.x() * z, ray.y() * z, z) + translation;
       if (p.z() <= 1e-3) continue;  // behind the camera now
-      const Eigen::Vector2d xn(p.x() / p.z(), p.y() / p.z());
-      const Eigen::Vector2d xd = camera_.Distort(xn);
+      const Eigen::Vector2d xd = camera_.Distort(Eigen::Vector2d(p.x() / p.z(), p.y() / p.z()));
       const double ut = camera_.fx * xd.x() + camera_.cx, vt = camera_.fy * xd.y() + camera_.cy;
-      if (!(ut > -splat && ut < w + splat && vt > -splat && vt < h + splat)) continue;
-      const int ui = static_cast<int>(std::lround(ut)), vi = static_cast<int>(std::lround(vt));
-      mark(ui, vi, splat);
+      if (!(ut >= 0 && ut < w && vt >= 0 && vt < h)) continue;  // out of view now
+      carried.at<std::uint8_t>(static_cast<int>(vt) / cell, static_cast<int>(ut) / cell) = 255;
     }
   }
-  if (options_.close_px > 0) {
-    const int k = 2 * options_.close_px + 1;
-    cv::morphologyEx(warped, warped, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k)));  // separable: fast
+  if (const int close = InCells(options_.close_px, cell); close > 0) {
+    const int k = 2 * close + 1;
+    cv::morphologyEx(carried, carried, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k)));
   }
-  if (grow_px > 0) {
-    const int k = 2 * grow_px + 1;
-    cv::dilate(warped, warped, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)));
+  if (const int grow = InCells(grow_px, cell); grow > 0) {
+    const int k = 2 * grow + 1;
+    cv::dilate(carried, carried, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)));
   }
-  return warped;
+  if (cell == 1) return carried;
+  cv::Mat full;
+  cv::resize(carried, full, cv::Size(cells_.width * cell, cells_.height * cell), 0, 0, cv::INTER_NEAREST);
+  return full(cv::Rect(0, 0, w, h)).clone();
 }
 
 }  // namespace dlslam::dynamic

@@ -109,6 +109,12 @@ features::OrbOptions StaticOrbOptions() {
   return options;
 }
 
+semantic::SegmenterOptions SystemSegmenterOptions() {
+  semantic::SegmenterOptions options;
+  options.threads = 1;
+  return options;
+}
+
 const char* ToString(PoseSource source) {
   switch (source) {
     case PoseSource::kTracked: return "tracked";

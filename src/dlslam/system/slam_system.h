@@ -40,6 +40,14 @@ namespace dlslam {
 // crowded frames).
 features::OrbOptions StaticOrbOptions();
 
+// The network's options in the system: inference on one OpenCV thread.
+// OpenCV's thread count is process-wide, and the system's own threads
+// (tracking, network, local mapping, frame reading) already fill a small
+// machine: OpenCV's pool on top of them only spins (real Bonn crowd, 2
+// cores, full mode with asynchronous masks: 17.2 s of CPU instead of 22.2 s,
+// 11.3 s wall instead of 13.2 s; waiting for masks: 13.8 s wall either way).
+semantic::SegmenterOptions SystemSegmenterOptions();
+
 // The semantic thread of modes semantic and full.
 struct SemanticThreadOptions {
   // Segment every frame that comes without a prior of its own
@@ -48,8 +56,8 @@ struct SemanticThreadOptions {
   // masks, a folder of masks, its own network); no model is loaded.
   bool network = true;
   // The network: model file ("" = the shipped one), input size, classes,
-  // mask margin.
-  semantic::SegmenterOptions segmenter;
+  // mask margin, OpenCV threads (SystemSegmenterOptions).
+  semantic::SegmenterOptions segmenter = SystemSegmenterOptions();
   // The worker: queue length, rate (segment every k-th frame, propagating
   // the masks to the frames between).
   semantic::SegmentationWorkerOptions worker;
