@@ -287,5 +287,52 @@ TEST_F(DynamicPipelineTest, TheLibraryRunsTheNetworkInItsSemanticThread) {
   EXPECT_NO_THROW(SlamSystem(*camera_, options));
 }
 
+TEST_F(DynamicPipelineTest, FramesSegmentedAheadTrackExactlyAsSegmentedInTurn) {
+  // SegmentAhead only starts the network earlier: the masks, and so the
+  // trajectory (sequential: reproducible bit for bit), are the same. A frame
+  // segmented ahead but never tracked (6) is dropped; an out-of-order call
+  // is ignored.
+  SystemOptions options;
+  options.sequential = true;
+  options.dynamic.mode = DynamicMode::kSemantic;
+  options.semantic.segmenter.model_path = testing::FixturePath("semantic/identity_rgb.onnx");
+  const int frames = 16;
+  const auto run = [&](bool ahead) {
+    SlamSystem slam(*camera_, options);
+    if (ahead) slam.SegmentAhead((*frames_)[0].colour, (*frames_)[0].timestamp);
+    for (int i = 0; i < frames; ++i) {
+      if (i == 6) continue;
+      const Rendered& f = (*frames_)[static_cast<std::size_t>(i)];
+      if (ahead && i + 1 < frames) {
+        const Rendered& next = (*frames_)[static_cast<std::size_t>(i + 1)];
+        slam.SegmentAhead(next.colour, next.timestamp);
+        slam.SegmentAhead(f.colour, f.timestamp);  // older than the last one ahead: ignored
+      }
+      slam.TrackRgbd(f.colour, f.depth, f.timestamp);
+    }
+    slam.Shutdown();
+    return std::make_pair(slam.Stats(), slam.CameraTrajectory());
+  };
+  const auto [in_turn, in_turn_trajectory] = run(false);
+  const auto [ahead, ahead_trajectory] = run(true);
+  EXPECT_EQ(in_turn.frames_segmented_ahead, 0);
+  // All tracked frames but 7 (its turn to be segmented ahead came while 6 was skipped).
+  EXPECT_EQ(ahead.frames_segmented_ahead, frames - 2);
+  EXPECT_EQ(ahead.timing_ms.at("semantic").count, static_cast<std::size_t>(frames - 1));
+  ASSERT_EQ(ahead_trajectory.size(), in_turn_trajectory.size());
+  ASSERT_EQ(ahead_trajectory.size(), static_cast<std::size_t>(frames - 1));
+  for (std::size_t i = 0; i < ahead_trajectory.size(); ++i) {
+    EXPECT_EQ(ahead_trajectory[i].translation, in_turn_trajectory[i].translation) << i;
+    EXPECT_EQ(ahead_trajectory[i].rotation.coeffs(), in_turn_trajectory[i].rotation.coeffs()) << i;
+  }
+  // Asynchronous masks segment the newest frame anyway: nothing ahead.
+  options.semantic.wait_for_masks = false;
+  EXPECT_EQ(run(true).first.frames_segmented_ahead, 0);
+  // A wrong size is an error naming the frame.
+  options.semantic.wait_for_masks = true;
+  SlamSystem slam(*camera_, options);
+  EXPECT_THROW(slam.SegmentAhead(cv::Mat(10, 10, CV_8UC3), 1.5), Error);
+}
+
 }  // namespace
 }  // namespace dlslam

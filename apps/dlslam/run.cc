@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <thread>
+#include <utility>
 #include <fstream>
 #include <memory>
 
@@ -170,8 +171,17 @@ RunOutcome RunSequence(const RunArgs& args) {
   int posed = 0;
   // Frames are read ahead in a thread of their own, as a camera delivers them.
   io::FramePrefetcher frames(sequence, n);
-  while (std::optional<io::FramePrefetcher::Item> item = frames.Next()) {
+  // The network starts on the next frame while this one is tracked.
+  const auto segment_ahead = [&](const std::optional<io::FramePrefetcher::Item>& item) {
+    if (item && item->result.ok() && !prior_source) {
+      slam.SegmentAhead(item->result.frame->color, item->result.frame->timestamp);
+    }
+  };
+  std::optional<io::FramePrefetcher::Item> next = frames.Next();
+  segment_ahead(next);
+  while (std::optional<io::FramePrefetcher::Item> item = std::exchange(next, frames.Next())) {
     const std::size_t i = item->index;
+    segment_ahead(next);
     const io::FrameLoadResult& loaded = item->result;
     if (!loaded.ok()) {
       spdlog::warn("frame {} lost: {}", i, loaded.error);

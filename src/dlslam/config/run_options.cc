@@ -250,6 +250,8 @@ void Visit(SemanticThreadOptions& o, V& v) {
           {"", "asynchronous: a keyframe enters the map only after its own masks"});
   v.Value("keyframe_mask_max_wait_frames", o.keyframe_mask_max_wait_frames,
           {"frames", "asynchronous: then the tracker waits for the keyframe's masks"});
+  v.Value("carried_segment_every", o.carried_segment_every,
+          {"frames", "asynchronous: offer a frame with carried masks to the network after this many"});
 }
 
 void Visit(LoopClosingOptions& o, V& v) {

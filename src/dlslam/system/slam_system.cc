@@ -134,6 +134,8 @@ void SemanticThreadOptions::Check() const {
                carry_grow_px, max_carry_grow_px);
   DLSLAM_CHECK(wait_when_removed_share > 0 && wait_when_removed_share <= 1,
                "SemanticThreadOptions::wait_when_removed_share {} outside (0, 1]", wait_when_removed_share);
+  DLSLAM_CHECK(carried_segment_every >= 1 && carried_segment_every <= 1000,
+               "SemanticThreadOptions::carried_segment_every {} outside [1, 1000]", carried_segment_every);
   DLSLAM_CHECK(keyframe_mask_max_wait_frames >= 0 && keyframe_mask_max_wait_frames <= 100,
                "SemanticThreadOptions::keyframe_mask_max_wait_frames {} outside [0, 100]",
                keyframe_mask_max_wait_frames);
@@ -216,12 +218,7 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   if (segmentation_ && !inputs.semantic_prior) {
     // Handed to the semantic thread before ORB extraction. Asynchronous, the
     // worker may read the frame after TrackRgbd returns: it gets a copy.
-    bgr = colour;
-    if (colour.type() == CV_8UC1) {
-      cv::cvtColor(colour, bgr, cv::COLOR_GRAY2BGR);
-    } else if (warper_) {
-      bgr = colour.clone();
-    }
+    bgr = NetworkImage(colour, /*copy=*/warper_ != nullptr);
     if (warper_) {
       recent_.push_back({frame_id, depth.empty() ? cv::Mat() : depth.clone(), std::nullopt});
       if (recent_.size() > kRecentFrames) recent_.pop_front();
@@ -232,12 +229,25 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
                          tracker_.state() != TrackingState::kOk;
     if (warper_ && !crowded) {
       ReleaseHeldKeyFrame(/*wait=*/false);
-      own_masks = segmentation_->TrySubmit(bgr, frame_id);  // a busy network skips the frame
+      if (frame_id - last_segmented_ >= options_.semantic.carried_segment_every) {
+        own_masks = segmentation_->TrySubmit(bgr, frame_id);  // a busy network skips the frame
+        if (own_masks) last_segmented_ = frame_id;
+      }
       masks_carried = true;
       inputs.semantic_prior = [this, frame_id] { return CarriedMasks(frame_id); };
     } else {
       // The dynamic stage waits for the masks only after ORB extraction.
-      std::shared_future<semantic::SegmentationResult> pending = segmentation_->Submit(bgr, warper_ ? frame_id : -1);
+      std::shared_future<semantic::SegmentationResult> pending;
+      // Frames segmented ahead but never tracked are dropped.
+      while (!ahead_.empty() && ahead_.front().timestamp < timestamp) ahead_.pop_front();
+      if (!ahead_.empty() && ahead_.front().timestamp == timestamp) {
+        pending = ahead_.front().masks;  // segmented while the last frame was tracked
+        ahead_.pop_front();
+        ++counts_.frames_segmented_ahead;
+      } else {
+        pending = segmentation_->Submit(bgr, warper_ ? frame_id : -1);
+      }
+      last_segmented_ = frame_id;
       inputs.semantic_prior = [this, pending] {
         const semantic::SegmentationResult& masks = pending.get();
         timings_.Add("semantic", masks.seconds * 1e3);
@@ -287,7 +297,12 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   if (result.held_keyframe && !held_keyframe_) {  // one at a time: a second one is simply not made
     HeldKeyFrame held;
     held.candidate = *result.held_keyframe;
-    held.masks = own_masks ? *own_masks : segmentation_->Submit(bgr, frame_id);
+    if (own_masks) {
+      held.masks = *own_masks;
+    } else {
+      held.masks = segmentation_->Submit(bgr, frame_id);
+      last_segmented_ = frame_id;
+    }
     held.timestamp = timestamp;
     if (options_.keep_keyframe_images) {
       held.colour = colour.clone();
@@ -343,6 +358,28 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   sources_.push_back({timestamp, source});
   timings_.Add("frame_total", total.ElapsedMs());
   return result;
+}
+
+cv::Mat SlamSystem::NetworkImage(const cv::Mat& colour, bool copy) const {
+  cv::Mat bgr;
+  if (colour.type() == CV_8UC1) {
+    cv::cvtColor(colour, bgr, cv::COLOR_GRAY2BGR);
+  } else {
+    bgr = copy ? colour.clone() : colour;
+  }
+  return bgr;
+}
+
+void SlamSystem::SegmentAhead(const cv::Mat& colour, double timestamp) {
+  DLSLAM_CHECK(!shut_down_, "the system was shut down");
+  constexpr std::size_t kMaxAhead = 2;  // the frame being tracked and the next
+  if (!segmentation_ || warper_ || ahead_.size() >= kMaxAhead) return;
+  if (!ahead_.empty() && timestamp <= ahead_.back().timestamp) return;  // not in frame order
+  DLSLAM_CHECK(!colour.empty() && colour.cols == camera_.width && colour.rows == camera_.height,
+               "SegmentAhead: colour image at t={:.6f} is {}x{}, camera is {}x{}", timestamp, colour.cols,
+               colour.rows, camera_.width, camera_.height);
+  // A copy: the caller's image may be reused before the worker reads it.
+  ahead_.push_back({timestamp, segmentation_->Submit(NetworkImage(colour, /*copy=*/true))});
 }
 
 void SlamSystem::KeyFrameMade(KeyFrameId id, double timestamp, const cv::Mat& colour, const cv::Mat& depth,

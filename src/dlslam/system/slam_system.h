@@ -87,6 +87,11 @@ struct SemanticThreadOptions {
   // another].
   bool keyframes_wait_for_own_masks = true;
   int keyframe_mask_max_wait_frames = 3;
+  // Asynchronous only: a frame with carried masks is offered to the network
+  // only when at least this many frames passed since the last frame handed
+  // to it (waiting frames and held keyframes count) [frames]; 1 = whenever
+  // the network is free.
+  int carried_segment_every = 1;
 
   void Check() const;
 };
@@ -167,6 +172,7 @@ struct RunStats {
   int frames_reextracted = 0;  // ORB features extracted again outside the removed regions
   int relocalizations = 0;  // lost -> tracked again through relocalization
   int jumps_refused = 0;    // tracked poses refused as too far from the motion model (coasted instead)
+  int frames_segmented_ahead = 0;  // whose masks were started by SegmentAhead
   // Asynchronous masks: keyframes held until their own masks came
   // (SemanticThreadOptions::keyframe_mask_max_wait_frames), those dropped
   // then (the map moved meanwhile, or too few matches outside the masks),
@@ -207,6 +213,17 @@ class SlamSystem {
   // that may move; empty = none). Mode orb ignores it.
   TrackingResult TrackRgbd(const cv::Mat& colour, const cv::Mat& depth, double timestamp,
                            const cv::Mat& semantic_prior = cv::Mat());
+  // The frame that will be tracked next, when it is already at hand (read
+  // ahead from disk, or queued behind the camera while the tracker is
+  // busy): the network starts on it now, while the current frame is
+  // tracked, instead of after TrackRgbd takes it, so that segmenting every
+  // frame costs the tracker little waiting. TrackRgbd with that timestamp
+  // then uses these masks (the image must not change meanwhile; other
+  // timestamps drop it). Call in frame order, the first frame too; at most
+  // two frames are ahead (more are not segmented ahead). Does nothing
+  // unless the system's network waits for masks (options.semantic: network
+  // and wait_for_masks; asynchronous masks segment the newest frame anyway).
+  void SegmentAhead(const cv::Mat& colour, double timestamp);
   // Loads a map saved by SaveMap before the first frame: tracking starts by
   // relocalizing in it; with options.localization_only it is never
   // extended, else mapping goes on on top of it. Throws InputError for a
@@ -310,9 +327,19 @@ class SlamSystem {
   void KeyFrameMade(KeyFrameId id, double timestamp, const cv::Mat& colour, const cv::Mat& depth,
                     const cv::Mat& removed);
   std::optional<HeldKeyFrame> held_keyframe_;
+  // SegmentAhead's frames, oldest first: their timestamps and masks.
+  struct AheadFrame {
+    double timestamp = 0.0;
+    std::shared_future<semantic::SegmentationResult> masks;
+  };
+  std::deque<AheadFrame> ahead_;
+  // The network's image of a frame: BGR, and a copy of it when the worker
+  // may read it after TrackRgbd returned (asynchronous masks, SegmentAhead).
+  cv::Mat NetworkImage(const cv::Mat& colour, bool copy) const;
   std::deque<RecentFrame> recent_;
   std::unique_ptr<dynamic::MaskWarper> warper_;
   long last_timed_mask_ = -1;  // the newest carried mask's frame, timed as "semantic"
+  long last_segmented_ = -1000000;  // the newest frame handed to the network
   // Keyframes' images for the dense map (options.keep_keyframe_images).
   struct KeyFrameImages {
     double timestamp = 0.0;
