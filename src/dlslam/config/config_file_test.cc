@@ -120,6 +120,10 @@ TEST_F(ConfigFileTest, MistakesAreErrorsWithTheirLine) {
               HasSubstr("c.yaml:2: dynamic.max_geometry_share_of_prior_static: out of range"));
   EXPECT_THAT(Error("semantic:\n  keyframe_mask_max_wait_frames: -1\n"),
               HasSubstr("c.yaml:2: semantic.keyframe_mask_max_wait_frames: out of range"));
+  EXPECT_THAT(Error("semantic:\n  carried_segment_every: 0\n"),
+              HasSubstr("c.yaml:2: semantic.carried_segment_every: out of range"));
+  EXPECT_THAT(Error("semantic:\n  segmenter:\n    threads: -1\n"),
+              HasSubstr("c.yaml:3: semantic.segmenter.threads: out of range"));
 }
 
 TEST_F(ConfigFileTest, TheReportJsonIsNested) {

@@ -25,7 +25,7 @@ DLSLAM_POPCNT_CLONES
 Nearest FindNearest(const uchar* descriptor, const cv::Mat& candidates) {
   Nearest n;
   for (int j = 0; j < candidates.rows; ++j) {
-    const int d = HammingDistance(descriptor, candidates.ptr<uchar>(j));
+    const int d = detail::HammingDistanceInline(descriptor, candidates.ptr<uchar>(j));
     if (d < n.best) {
       n.second = n.best;
       n.best = d;
@@ -38,6 +38,9 @@ Nearest FindNearest(const uchar* descriptor, const cv::Mat& candidates) {
 }
 
 }  // namespace
+
+DLSLAM_POPCNT_CLONES
+int HammingDistance(const uchar* a, const uchar* b) { return detail::HammingDistanceInline(a, b); }
 
 void MatchOptions::Check() const {
   DLSLAM_CHECK(ratio > 0.0 && ratio <= 1.0, "MatchOptions::ratio {} outside (0, 1]", ratio);
