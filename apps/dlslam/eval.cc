@@ -10,6 +10,7 @@
 #include "cli_checks.h"
 #include "commands.h"
 #include "dlslam/eval/ate.h"
+#include "dlslam/eval/ground_truth_convention.h"
 #include "dlslam/eval/plot.h"
 #include "dlslam/eval/report.h"
 #include "dlslam/eval/rpe.h"
@@ -28,6 +29,7 @@ struct EvalArgs {
   double scale = 1.0;
   bool json = false;
   std::string plot;
+  std::string gt_convention = "published";
 };
 
 void AddCommonOptions(CLI::App* cmd, EvalArgs& args) {
@@ -37,6 +39,11 @@ void AddCommonOptions(CLI::App* cmd, EvalArgs& args) {
       ->capture_default_str()->check(RealNumber(-1e9, 1e9));
   cmd->add_option("--scale", args.scale, "Scale applied to the estimate's translations")
       ->capture_default_str()->check(RealNumber(1e-9, 1e9));
+  cmd->add_option("--gt-convention", args.gt_convention,
+                  "Whose poses the ground truth holds: published (as the file says) | bonn-camera (Bonn RGB-D "
+                  "Dynamic marker poses turned into the camera's with the dataset's transform)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"published", "bonn-camera"}));
   cmd->add_flag("--json", args.json, "Print the result as one line of JSON");
   cmd->add_option("--plot", args.plot, "Write a plot: out.svg or out.png");
 }
@@ -73,10 +80,14 @@ void WritePlot(const std::string& path, const Result& result, std::string (*svg)
   }
 }
 
+Trajectory ReadGroundTruth(const EvalArgs& args) {
+  return eval::ToCameraPoses(Read(args.gt), eval::ParseGroundTruthConvention(args.gt_convention));
+}
+
 void RunAte(const EvalArgs& args, const eval::AteOptions& options) {
   options.Check();
   if (!args.plot.empty()) eval::PlotFormatFromPath(args.plot);  // fail before the work
-  const Trajectory gt = Read(args.gt);
+  const Trajectory gt = ReadGroundTruth(args);
   const Trajectory est = Read(args.est);
   const eval::AteResult result = NamingFiles(args, [&] { return eval::ComputeAte(gt, est, options); });
   if (args.json) {
@@ -93,7 +104,7 @@ void RunAte(const EvalArgs& args, const eval::AteOptions& options) {
 void RunRpe(const EvalArgs& args, const eval::RpeOptions& options) {
   options.Check();
   if (!args.plot.empty()) eval::PlotFormatFromPath(args.plot);
-  const Trajectory gt = Read(args.gt);
+  const Trajectory gt = ReadGroundTruth(args);
   const Trajectory est = Read(args.est);
   const eval::RpeResult result = NamingFiles(args, [&] { return eval::ComputeRpe(gt, est, options); });
   if (args.json) {

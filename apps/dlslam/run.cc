@@ -241,7 +241,9 @@ RunOutcome RunSequence(const RunArgs& args) {
   RunStats stats = slam.Stats();
   for (const auto& [stage, summary] : source_timings.Summaries()) stats.timing_ms[stage] = summary;
   std::optional<RunEvaluation> evaluation;
-  if (sequence.ground_truth()) evaluation = EvaluateRun(*sequence.ground_truth(), trajectory);
+  if (sequence.ground_truth()) {
+    evaluation = EvaluateRun(*sequence.ground_truth(), trajectory, /*bonn=*/sequence.camera().name == "bonn");
+  }
   const auto& t = stats.timing_ms;
   spdlog::info("posed {}/{} frames (tracked {}, relocalized {}, coasted {}, in a new map {}), without a pose {} (lost "
                "{}, before initialisation {}), {} loops closed, {} new maps ({} merged), {} keyframes, {} map points, "
@@ -261,6 +263,13 @@ RunOutcome RunSequence(const RunArgs& args) {
     if (evaluation->rpe) {
       spdlog::info("RPE (1 s) RMSE {:.4f} m, {:.3f} deg", evaluation->rpe->translation.rmse,
                    evaluation->rpe->rotation_deg.rmse);
+    }
+    if (const auto& camera = evaluation->bonn_camera) {
+      spdlog::info("against the Bonn camera poses (the published marker poses transformed, eval --gt-convention "
+                   "bonn-camera): ATE RMSE {:.4f} m{}", camera->ate.error.rmse,
+                   camera->rpe ? fmt::format(", RPE (1 s) RMSE {:.4f} m, {:.3f} deg", camera->rpe->translation.rmse,
+                                             camera->rpe->rotation_deg.rmse)
+                               : std::string());
     }
   }
   std::optional<double> map_save_ms;

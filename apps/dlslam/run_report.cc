@@ -1,7 +1,10 @@
 #include "run_report.h"
 
+#include "dlslam/eval/ground_truth_convention.h"
+
 #include <spdlog/spdlog.h>
 
+#include "dlslam/eval/ground_truth_convention.h"
 #include "dlslam/eval/report.h"
 #include "dlslam/util/check.h"
 
@@ -133,13 +136,21 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
   j["timing_ms"] = TimingsReport(stats.timing_ms);
   j["dynamic"] = DynamicReport(stats);
   if (evaluation) {
+    j["ground_truth"] = eval::ToString(eval::GroundTruthConvention::kAsPublished);
     j["ate"] = eval::ToJson(evaluation->ate);
     if (evaluation->rpe) j["rpe"] = eval::ToJson(*evaluation->rpe);
+    if (const auto& camera = evaluation->bonn_camera) {
+      nlohmann::ordered_json c;
+      c["ground_truth"] = eval::ToString(eval::GroundTruthConvention::kBonnCamera);
+      c["ate"] = eval::ToJson(camera->ate);
+      if (camera->rpe) c["rpe"] = eval::ToJson(*camera->rpe);
+      j["bonn_camera"] = std::move(c);
+    }
   }
   return j;
 }
 
-std::optional<RunEvaluation> EvaluateRun(const Trajectory& ground_truth, const Trajectory& estimate) {
+std::optional<RunEvaluation> EvaluateRun(const Trajectory& ground_truth, const Trajectory& estimate, bool bonn) {
   if (estimate.size() < 2) {
     spdlog::warn("evaluation skipped: only {} tracked frame(s)", estimate.size());
     return std::nullopt;
@@ -155,6 +166,16 @@ std::optional<RunEvaluation> EvaluateRun(const Trajectory& ground_truth, const T
     out.rpe = eval::ComputeRpe(ground_truth, estimate);
   } catch (const Error& e) {
     spdlog::warn("RPE not computed: {}", e.what());
+  }
+  if (bonn) {
+    const Trajectory cameras = eval::ToCameraPoses(ground_truth, eval::GroundTruthConvention::kBonnCamera);
+    RunEvaluation::Accuracy camera;
+    camera.ate = eval::ComputeAte(cameras, estimate);  // the same pairs: it cannot fail where the first did not
+    try {
+      camera.rpe = eval::ComputeRpe(cameras, estimate);
+    } catch (const Error&) {  // warned above
+    }
+    out.bonn_camera = std::move(camera);
   }
   return out;
 }

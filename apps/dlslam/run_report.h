@@ -11,9 +11,18 @@
 
 namespace dlslam::app {
 
+// Accuracy against the ground truth as published (the TUM tool's numbers;
+// for Bonn RGB-D Dynamic the motion-capture marker's poses) and, for Bonn,
+// against the camera's poses too (eval::GroundTruthConvention::kBonnCamera:
+// what the dataset's tools compare, and the only meaningful RPE there).
 struct RunEvaluation {
+  struct Accuracy {
+    eval::AteResult ate;
+    std::optional<eval::RpeResult> rpe;  // absent when the run is shorter than the delta
+  };
   eval::AteResult ate;
   std::optional<eval::RpeResult> rpe;  // absent when the run is shorter than the delta
+  std::optional<Accuracy> bonn_camera;
 };
 
 // Keys: frames, frames_tracked, frames_lost, frames_waiting, keyframes,
@@ -47,6 +56,9 @@ nlohmann::ordered_json TimingsReport(const std::map<std::string, TimingSummary>&
 
 // Evaluates against ground truth when there is enough overlap; nullopt (and a
 // warning) otherwise.
-std::optional<RunEvaluation> EvaluateRun(const Trajectory& ground_truth, const Trajectory& estimate);
+// `bonn`: the ground truth is a Bonn RGB-D Dynamic marker trajectory (the
+// sequence's camera is the Bonn preset): evaluate against its camera poses too.
+std::optional<RunEvaluation> EvaluateRun(const Trajectory& ground_truth, const Trajectory& estimate,
+                                         bool bonn = false);
 
 }  // namespace dlslam::app

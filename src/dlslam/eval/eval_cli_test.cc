@@ -4,10 +4,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "dlslam/eval/ground_truth_convention.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/test_data.h"
 
@@ -64,6 +68,45 @@ TEST_F(EvalCliTest, RpeJsonMatchesTheReference) {
   EXPECT_EQ(cpp.at("pairs"), ref.at("pairs"));
   ExpectStatsNear(cpp.at("translation"), ref.at("translation"));
   ExpectStatsNear(cpp.at("rotation_deg"), ref.at("rotation_deg"));
+}
+
+TEST_F(EvalCliTest, BonnMarkerPosesAreTurnedIntoTheCamerasOnRequest) {
+  // A turning, moving marker (a handheld sensor) and the camera poses the
+  // dataset's transform gives: a perfect estimate against the camera, with
+  // RPE errors against the marker (its turns are about another centre).
+  std::ofstream gt(dir_ / "gt.txt"), est(dir_ / "est.txt");
+  for (int i = 0; i < 60; ++i) {
+    const double t = i / 30.0;
+    const dlslam::SE3d marker(
+        Eigen::Quaterniond(Eigen::AngleAxisd(0.6 * std::sin(t), Eigen::Vector3d(0.2, 1, 0.1).normalized())),
+        Eigen::Vector3d(0.3 * t, -1.5, 1.5 + 0.1 * std::sin(2 * t)));
+    const dlslam::SE3d camera = dlslam::eval::BonnCameraFromMarker(marker);
+    const auto line = [t](const dlslam::SE3d& p) {
+      const Eigen::Quaterniond& q = p.unit_quaternion();
+      return fmt::format("{:.6f} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f}\n", 1000 + t, p.translation().x(),
+                         p.translation().y(), p.translation().z(), q.x(), q.y(), q.z(), q.w());
+    };
+    gt << line(marker);
+    est << line(camera);
+  }
+  gt.close();
+  est.close();
+  const std::string files = "--gt " + Quoted(dir_ / "gt.txt") + " --est " + Quoted(dir_ / "est.txt");
+  const auto rpe_deg = [](const CliRun& run) {
+    return nlohmann::json::parse(run.output).at("rotation_deg").at("rmse").get<double>();
+  };
+  const CliRun camera = Cli("eval rpe " + files + " --delta 0.5 --gt-convention bonn-camera --json");
+  ASSERT_EQ(camera.exit_code, 0) << camera.output;
+  EXPECT_LT(rpe_deg(camera), 1e-4);
+  const CliRun published = Cli("eval rpe " + files + " --delta 0.5 --json");
+  ASSERT_EQ(published.exit_code, 0) << published.output;
+  EXPECT_GT(rpe_deg(published), 1.0);
+  const CliRun ate = Cli("eval ate " + files + " --gt-convention bonn-camera --json");
+  ASSERT_EQ(ate.exit_code, 0) << ate.output;
+  EXPECT_LT(nlohmann::json::parse(ate.output).at("rmse").get<double>(), 1e-6);
+  const CliRun unknown = Cli("eval ate " + files + " --gt-convention camera", "2>&1");
+  EXPECT_NE(unknown.exit_code, 0);
+  EXPECT_THAT(unknown.output, HasSubstr("published,bonn-camera"));
 }
 
 TEST_F(EvalCliTest, OffsetReachesTheComputation) {
