@@ -144,6 +144,16 @@ std::string Table(const std::vector<ModeRun>& runs, double budget_ms) {
   table += row("ATE RMSE [m]", [](const ModeRun& r) {
     return r.outcome.evaluation ? fmt::format("{:.4f}", r.outcome.evaluation->ate.error.rmse) : std::string("-");
   });
+  const auto camera_ate = [](const ModeRun& r) -> std::optional<double> {
+    if (!r.outcome.evaluation || !r.outcome.evaluation->bonn_camera) return std::nullopt;
+    return r.outcome.evaluation->bonn_camera->ate.error.rmse;
+  };
+  if (!runs.empty() && camera_ate(runs.front())) {  // a Bonn sequence: its marker poses as published, above
+    table += row("ATE RMSE [m], Bonn camera poses", [&](const ModeRun& r) {
+      const std::optional<double> ate = camera_ate(r);
+      return ate ? fmt::format("{:.4f}", *ate) : std::string("-");
+    });
+  }
   return table;
 }
 
@@ -173,6 +183,9 @@ nlohmann::ordered_json Json(const BenchArgs& args, const fs::path& sequence, con
     m["realtime_factor"] = r.wall_s > 0 ? r.sequence_s / r.wall_s : 0.0;
     m["ate_rmse"] = r.outcome.evaluation ? nlohmann::ordered_json(r.outcome.evaluation->ate.error.rmse)
                                          : nlohmann::ordered_json();
+    if (r.outcome.evaluation && r.outcome.evaluation->bonn_camera) {
+      m["ate_rmse_bonn_camera"] = r.outcome.evaluation->bonn_camera->ate.error.rmse;
+    }
     for (const auto& [stage, t] : r.outcome.stats.timing_ms) {
       m["stages_ms"][stage] = {{"count", t.count}, {"median", t.median}, {"p95", t.p95}, {"max", t.max}};
     }
