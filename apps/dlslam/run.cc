@@ -170,6 +170,7 @@ RunOutcome RunSequence(const RunArgs& args) {
   }
   int posed = 0;
   // Frames are read ahead in a thread of their own, as a camera delivers them.
+  const Stopwatch loop_watch;
   io::FramePrefetcher frames(sequence, n);
   // The network starts on the next frame while this one is tracked.
   const auto segment_ahead = [&](const std::optional<io::FramePrefetcher::Item>& item) {
@@ -231,6 +232,7 @@ RunOutcome RunSequence(const RunArgs& args) {
   }
 
   slam.Shutdown();
+  const double loop_ms = loop_watch.ElapsedMs();
   const Trajectory trajectory = slam.CameraTrajectory();
   io::WriteTumTrajectory(args.out, trajectory);
   spdlog::info("wrote {} poses to {}", trajectory.size(), args.out.string());
@@ -240,6 +242,13 @@ RunOutcome RunSequence(const RunArgs& args) {
 
   RunStats stats = slam.Stats();
   for (const auto& [stage, summary] : source_timings.Summaries()) stats.timing_ms[stage] = summary;
+  if (n > 1) {
+    // Frames read to Shutdown (local mapping and loop closing finished).
+    const double wall_s = loop_ms / 1e3;
+    const double video_s = sequence.frames()[n - 1].timestamp() - sequence.frames()[0].timestamp();
+    spdlog::info("{} frames in {:.1f} s for {:.1f} s of video: {:.2f}x real time", n, wall_s, video_s,
+                 wall_s > 0 ? video_s / wall_s : 0.0);
+  }
   std::optional<RunEvaluation> evaluation;
   if (sequence.ground_truth()) {
     evaluation = EvaluateRun(*sequence.ground_truth(), trajectory, /*bonn=*/sequence.camera().name == "bonn");
