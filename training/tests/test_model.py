@@ -80,6 +80,26 @@ class ModelTest(unittest.TestCase):
             print(f'{preset}: cv2.dnn vs PyTorch max |diff| {diff:.2e} (logit range {np.abs(ref).max():.2f})')
             self.assertLess(diff, 1e-3)
 
+    def test_relu6_fused_for_opencv_gives_the_portable_exports_logits(self):
+        import cv2
+        import onnx
+        from export_onnx import export
+        torch.manual_seed(1)
+        m = build_model('mnv2_w05', num_classes=3).eval()
+        x = (torch.rand(1, 3, 65, 81) * 2 - 1).numpy()
+        outs = {}
+        with tempfile.TemporaryDirectory() as tmp:
+            for portable in (False, True):
+                path = os.path.join(tmp, f'm{portable}.onnx')
+                export(m, path, 65, 81, portable=portable)
+                ops = [n.op_type for n in onnx.load(path).graph.node]
+                self.assertEqual('Clip' in ops, not portable)
+                self.assertEqual('Sub' in ops, portable)
+                net = cv2.dnn.readNetFromONNX(path)
+                net.setInput(x)
+                outs[portable] = net.forward()
+        self.assertLess(float(np.abs(outs[False] - outs[True]).max()), 1e-5)
+
 
 if __name__ == '__main__':
     unittest.main()
