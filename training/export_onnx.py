@@ -46,7 +46,6 @@ def fuse_relu6_for_opencv(onnx_model):
     thread). Clip-11 takes min/max as inputs, which OpenCV 4.6 refuses; with attributes (the opset-6
     form) onnx.checker and ONNX Runtime refuse the file instead: it is an OpenCV-dnn model
     (export with --portable for the spec-valid form). Returns the number of ReLU6 fused."""
-    import onnx
     from onnx import helper, numpy_helper
     g = onnx_model.graph
     constants = {n.output[0]: n for n in g.node if n.op_type == 'Constant'}
