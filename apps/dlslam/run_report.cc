@@ -1,7 +1,5 @@
 #include "run_report.h"
 
-#include "dlslam/eval/ground_truth_convention.h"
-
 #include <spdlog/spdlog.h>
 
 #include "dlslam/eval/ground_truth_convention.h"
@@ -105,6 +103,18 @@ nlohmann::ordered_json TimingsReport(const std::map<std::string, TimingSummary>&
   return j;
 }
 
+namespace {
+
+// "ground_truth", "ate" and (when computed) "rpe" into `out`.
+void AddAccuracy(const TrajectoryAccuracy& accuracy, eval::GroundTruthConvention convention,
+                 nlohmann::ordered_json* out) {
+  (*out)["ground_truth"] = eval::ToString(convention);
+  (*out)["ate"] = eval::ToJson(accuracy.ate);
+  if (accuracy.rpe) (*out)["rpe"] = eval::ToJson(*accuracy.rpe);
+}
+
+}  // namespace
+
 nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<RunEvaluation>& evaluation) {
   nlohmann::ordered_json j;
   j["frames"] = stats.frames;
@@ -136,46 +146,49 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
   j["timing_ms"] = TimingsReport(stats.timing_ms);
   j["dynamic"] = DynamicReport(stats);
   if (evaluation) {
-    j["ground_truth"] = eval::ToString(eval::GroundTruthConvention::kAsPublished);
-    j["ate"] = eval::ToJson(evaluation->ate);
-    if (evaluation->rpe) j["rpe"] = eval::ToJson(*evaluation->rpe);
+    AddAccuracy(*evaluation, eval::GroundTruthConvention::kAsPublished, &j);
     if (const auto& camera = evaluation->bonn_camera) {
-      nlohmann::ordered_json c;
-      c["ground_truth"] = eval::ToString(eval::GroundTruthConvention::kBonnCamera);
-      c["ate"] = eval::ToJson(camera->ate);
-      if (camera->rpe) c["rpe"] = eval::ToJson(*camera->rpe);
-      j["bonn_camera"] = std::move(c);
+      AddAccuracy(*camera, eval::GroundTruthConvention::kBonnCamera, &j["bonn_camera"]);
     }
   }
   return j;
 }
+
+namespace {
+
+// ATE and RPE against `ground_truth`; nullopt without an ATE. Failures are
+// warned about when `warn` (the conventions pair the same poses: a second
+// warning would only repeat the first).
+std::optional<TrajectoryAccuracy> Accuracy(const Trajectory& ground_truth, const Trajectory& estimate, bool warn) {
+  TrajectoryAccuracy out;
+  try {
+    out.ate = eval::ComputeAte(ground_truth, estimate);
+  } catch (const Error& e) {
+    if (warn) spdlog::warn("ATE not computed: {}", e.what());
+    return std::nullopt;
+  }
+  try {
+    out.rpe = eval::ComputeRpe(ground_truth, estimate);
+  } catch (const Error& e) {
+    if (warn) spdlog::warn("RPE not computed: {}", e.what());
+  }
+  return out;
+}
+
+}  // namespace
 
 std::optional<RunEvaluation> EvaluateRun(const Trajectory& ground_truth, const Trajectory& estimate, bool bonn) {
   if (estimate.size() < 2) {
     spdlog::warn("evaluation skipped: only {} tracked frame(s)", estimate.size());
     return std::nullopt;
   }
+  std::optional<TrajectoryAccuracy> published = Accuracy(ground_truth, estimate, /*warn=*/true);
+  if (!published) return std::nullopt;
   RunEvaluation out;
-  try {
-    out.ate = eval::ComputeAte(ground_truth, estimate);
-  } catch (const Error& e) {
-    spdlog::warn("ATE not computed: {}", e.what());
-    return std::nullopt;
-  }
-  try {
-    out.rpe = eval::ComputeRpe(ground_truth, estimate);
-  } catch (const Error& e) {
-    spdlog::warn("RPE not computed: {}", e.what());
-  }
+  static_cast<TrajectoryAccuracy&>(out) = std::move(*published);
   if (bonn) {
-    const Trajectory cameras = eval::ToCameraPoses(ground_truth, eval::GroundTruthConvention::kBonnCamera);
-    RunEvaluation::Accuracy camera;
-    camera.ate = eval::ComputeAte(cameras, estimate);  // the same pairs: it cannot fail where the first did not
-    try {
-      camera.rpe = eval::ComputeRpe(cameras, estimate);
-    } catch (const Error&) {  // warned above
-    }
-    out.bonn_camera = std::move(camera);
+    out.bonn_camera = Accuracy(eval::ToCameraPoses(ground_truth, eval::GroundTruthConvention::kBonnCamera), estimate,
+                               /*warn=*/false);
   }
   return out;
 }

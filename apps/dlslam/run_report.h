@@ -15,14 +15,12 @@ namespace dlslam::app {
 // for Bonn RGB-D Dynamic the motion-capture marker's poses) and, for Bonn,
 // against the camera's poses too (eval::GroundTruthConvention::kBonnCamera:
 // what the dataset's tools compare, and the only meaningful RPE there).
-struct RunEvaluation {
-  struct Accuracy {
-    eval::AteResult ate;
-    std::optional<eval::RpeResult> rpe;  // absent when the run is shorter than the delta
-  };
+struct TrajectoryAccuracy {
   eval::AteResult ate;
   std::optional<eval::RpeResult> rpe;  // absent when the run is shorter than the delta
-  std::optional<Accuracy> bonn_camera;
+};
+struct RunEvaluation : TrajectoryAccuracy {  // as published
+  std::optional<TrajectoryAccuracy> bonn_camera;
 };
 
 // Keys: frames, frames_tracked, frames_lost, frames_waiting, keyframes,

@@ -53,6 +53,18 @@ bool SameCamera(const CameraIntrinsics& a, const CameraIntrinsics& b) {
          close(a.p2, b.p2) && close(a.k3, b.k3) && close(a.bf, b.bf);
 }
 
+// The network's image of a frame: BGR, and a copy of it when the worker
+// may read it after the caller has reused the image.
+cv::Mat NetworkImage(const cv::Mat& colour, bool copy) {
+  cv::Mat bgr;
+  if (colour.type() == CV_8UC1) {
+    cv::cvtColor(colour, bgr, cv::COLOR_GRAY2BGR);
+  } else {
+    bgr = copy ? colour.clone() : colour;
+  }
+  return bgr;
+}
+
 std::string Describe(const CameraIntrinsics& c) {
   return fmt::format("{} {}x{} fx {:.3f} fy {:.3f} cx {:.3f} cy {:.3f} k1 {:g} bf {:g}", Quoted(c.name), c.width,
                      c.height, c.fx, c.fy, c.cx, c.cy, c.k1, c.bf);
@@ -204,10 +216,7 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
 TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth, double timestamp,
                                      const DynamicInputs& dynamic) {
   DLSLAM_CHECK(!shut_down_, "the system was shut down");
-  DLSLAM_CHECK(!colour.empty(), "empty colour image at t={:.6f}", timestamp);
-  DLSLAM_CHECK(colour.cols == camera_.width && colour.rows == camera_.height,
-               "colour image at t={:.6f} is {}x{}, camera is {}x{}", timestamp, colour.cols, colour.rows,
-               camera_.width, camera_.height);
+  CheckColour(colour, timestamp);
   ++counts_.frames;
   Stopwatch total;
   DynamicInputs inputs = dynamic;
@@ -360,14 +369,11 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   return result;
 }
 
-cv::Mat SlamSystem::NetworkImage(const cv::Mat& colour, bool copy) const {
-  cv::Mat bgr;
-  if (colour.type() == CV_8UC1) {
-    cv::cvtColor(colour, bgr, cv::COLOR_GRAY2BGR);
-  } else {
-    bgr = copy ? colour.clone() : colour;
-  }
-  return bgr;
+void SlamSystem::CheckColour(const cv::Mat& colour, double timestamp) const {
+  DLSLAM_CHECK(!colour.empty(), "empty colour image at t={:.6f}", timestamp);
+  DLSLAM_CHECK(colour.cols == camera_.width && colour.rows == camera_.height,
+               "colour image at t={:.6f} is {}x{}, camera is {}x{}", timestamp, colour.cols, colour.rows,
+               camera_.width, camera_.height);
 }
 
 void SlamSystem::SegmentAhead(const cv::Mat& colour, double timestamp) {
@@ -375,9 +381,7 @@ void SlamSystem::SegmentAhead(const cv::Mat& colour, double timestamp) {
   constexpr std::size_t kMaxAhead = 2;  // the frame being tracked and the next
   if (!segmentation_ || warper_ || ahead_.size() >= kMaxAhead) return;
   if (!ahead_.empty() && timestamp <= ahead_.back().timestamp) return;  // not in frame order
-  DLSLAM_CHECK(!colour.empty() && colour.cols == camera_.width && colour.rows == camera_.height,
-               "SegmentAhead: colour image at t={:.6f} is {}x{}, camera is {}x{}", timestamp, colour.cols,
-               colour.rows, camera_.width, camera_.height);
+  CheckColour(colour, timestamp);
   // A copy: the caller's image may be reused before the worker reads it.
   ahead_.push_back({timestamp, segmentation_->Submit(NetworkImage(colour, /*copy=*/true))});
 }

@@ -333,9 +333,8 @@ class SlamSystem {
     std::shared_future<semantic::SegmentationResult> masks;
   };
   std::deque<AheadFrame> ahead_;
-  // The network's image of a frame: BGR, and a copy of it when the worker
-  // may read it after TrackRgbd returned (asynchronous masks, SegmentAhead).
-  cv::Mat NetworkImage(const cv::Mat& colour, bool copy) const;
+  // Throws dlslam::Error for an empty colour image or one of another size than the camera's.
+  void CheckColour(const cv::Mat& colour, double timestamp) const;
   std::deque<RecentFrame> recent_;
   std::unique_ptr<dynamic::MaskWarper> warper_;
   long last_timed_mask_ = -1;  // the newest carried mask's frame, timed as "semantic"
