@@ -13,6 +13,9 @@
 #include <opencv2/core.hpp>
 
 #include <algorithm>
+#include <string>
+
+#include <fmt/format.h>
 
 #include "dlslam/eval/ate.h"
 #include "dlslam/io/sequence.h"
@@ -54,6 +57,14 @@ CoveredRun RunCovered(const std::filesystem::path& folder, int new_map_after_los
 
 int Posed(const RunStats& s) { return s.frames_tracked + s.frames_coasted; }
 
+// "frame: source" for the frames around the gap, for a failure's message.
+std::string SourcesAroundTheGap(const std::vector<FramePoseSource>& sources) {
+  std::string out;
+  const int last = std::min<int>(kCoveredTo + 40, static_cast<int>(sources.size()));
+  for (int i = kCoveredFrom - 5; i < last; ++i) out += fmt::format("{}:{} ", i, ToString(sources[i].source));
+  return out;
+}
+
 TEST(NewMapTest, ANewMapAfterTheGapIsMergedIntoTheOldOne) {
   DLSLAM_REQUIRE_SHARED_DATA(folder, "7scenes-redkitchen-500");
   const CoveredRun with = RunCovered(folder, TrackerOptions().new_map_after_lost_frames);
@@ -89,10 +100,21 @@ TEST(NewMapTest, ANewMapAfterTheGapIsMergedIntoTheOldOne) {
 // As deployed, with local mapping and loop closing in their threads (the
 // merge pauses local mapping from the tracking thread): every frame after
 // the gap is posed, and the run ends cleanly (also under ThreadSanitizer).
+// The mapping thread's timing decides which keyframe is the tracker's
+// reference when the lens is covered; from some of them the old map finds
+// the camera again on the first frame after the gap (3 runs in 16 when
+// measured), otherwise a new map starts there and is merged.
 TEST(NewMapTest, WithTheMappingThread) {
   DLSLAM_REQUIRE_SHARED_DATA(folder, "7scenes-redkitchen-500");
   const CoveredRun run = RunCovered(folder, TrackerOptions().new_map_after_lost_frames, /*sequential=*/false);
-  EXPECT_GE(run.stats.maps_started, 1);
+  const PoseSource first_after_gap = run.sources[kCoveredTo].source;
+  if (run.stats.maps_started == 0) {
+    EXPECT_TRUE(first_after_gap == PoseSource::kTracked || first_after_gap == PoseSource::kRelocalized)
+        << SourcesAroundTheGap(run.sources);
+  } else {
+    EXPECT_EQ(first_after_gap, PoseSource::kNewMap) << SourcesAroundTheGap(run.sources);
+    EXPECT_EQ(run.stats.maps_merged, run.stats.maps_started) << SourcesAroundTheGap(run.sources);
+  }
   for (int i = kCoveredTo; i < kFrames; ++i) EXPECT_NE(run.sources[i].source, PoseSource::kNone) << "frame " << i;
   EXPECT_LT(run.ate.error.rmse, 0.1);
 }

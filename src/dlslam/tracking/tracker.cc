@@ -147,12 +147,14 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
     result.reference_keyframe = reference_keyframe_;
     return result;
   }
+  const bool back_from_loss = state_ == TrackingState::kLost || result.relocalized;
   state_ = TrackingState::kOk;
   coasted_frames_ = 0;
   lost_frames_ = 0;
   reference_keyframe_ = reference;
-  // After a relocalization the last pose is from before the loss: no motion model.
-  velocity_ = last_pose_ && !result.relocalized ? std::optional<SE3d>(pose * last_pose_->Inverse()) : std::nullopt;
+  // Back from a loss (relocalized, or found again from the reference
+  // keyframe) the last pose is from before it: no motion model.
+  velocity_ = last_pose_ && !back_from_loss ? std::optional<SE3d>(pose * last_pose_->Inverse()) : std::nullopt;
   ++frames_since_keyframe_;
   last_matches_ = matches;
   // A map moved by loop closing during this call: the pose is from before,

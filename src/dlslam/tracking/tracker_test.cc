@@ -140,6 +140,30 @@ TEST(Tracker, ReportsLostAndRecoversThroughTheReferenceKeyFrame) {
   EXPECT_LT((r.cam_from_world->Inverse().translation() - truth_rel.Inverse().translation()).norm(), 0.01);
 }
 
+// Found again after many lost frames, the last pose is from before the loss:
+// the motion since then is no velocity. Taken as one (as it once was), it
+// predicts the next frame far off, and that frame's right pose is refused as
+// a jump (7-Scenes with the lens covered for 50 frames did this).
+TEST(Tracker, NoMotionModelFromBeforeTheLoss) {
+  const auto scene = testing::LandmarkScene::Room(6000, 5);
+  Map map;
+  TrackerOptions options;
+  options.max_coasting_frames = 0;
+  options.new_map_after_lost_frames = 0;
+  Tracker tracker(options, &map);
+  for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+  for (int i = 10; i < 40; ++i) {
+    const Frame black = Frame::Create(i / 30.0, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
+    ASSERT_EQ(tracker.Track(std::make_shared<Frame>(black)).state, TrackingState::kLost);
+  }
+  ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(40), 40 / 30.0, 140)).state, TrackingState::kOk);
+  const TrackingResult next = tracker.Track(scene.MakeFrame(CamFromWorld(41), 41 / 30.0, 141));
+  EXPECT_FALSE(next.jump_refused);
+  ASSERT_EQ(next.state, TrackingState::kOk);
+  const SE3d truth = CamFromWorld(41) * CamFromWorld(0).Inverse();
+  EXPECT_LT((next.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm(), 0.005);
+}
+
 TEST(Tracker, EstimatePoseIsAccurateAndLeavesTheTrackerAsItWas) {
   const auto scene = testing::LandmarkScene::Room(6000, 6);
   Map map_a, map_b;
