@@ -273,11 +273,11 @@ RunOutcome RunSequence(const RunArgs& args) {
       spdlog::info("RPE (1 s) RMSE {:.4f} m, {:.3f} deg", evaluation->rpe->translation.rmse,
                    evaluation->rpe->rotation_deg.rmse);
     }
-    if (const auto& camera = evaluation->bonn_camera) {
+    if (const auto& bonn = evaluation->bonn_camera) {
       spdlog::info("against the Bonn camera poses (the published marker poses transformed, eval --gt-convention "
-                   "bonn-camera): ATE RMSE {:.4f} m{}", camera->ate.error.rmse,
-                   camera->rpe ? fmt::format(", RPE (1 s) RMSE {:.4f} m, {:.3f} deg", camera->rpe->translation.rmse,
-                                             camera->rpe->rotation_deg.rmse)
+                   "bonn-camera): ATE RMSE {:.4f} m{}", bonn->ate.error.rmse,
+                   bonn->rpe ? fmt::format(", RPE (1 s) RMSE {:.4f} m, {:.3f} deg", bonn->rpe->translation.rmse,
+                                             bonn->rpe->rotation_deg.rmse)
                                : std::string());
     }
   }

@@ -186,50 +186,90 @@ void SuppressNonMaxima(const cv::Mat& scores, const std::vector<cv::Point>& cand
   }
 }
 
+FastGrid::FastGrid(const cv::Rect& area_in, int cell_size)
+    : area(area_in),
+      cols(std::max(1, (area_in.width + cell_size / 2) / cell_size)),
+      rows(std::max(1, (area_in.height + cell_size / 2) / cell_size)) {}
+
+cv::Rect FastGrid::Cell(int row, int col) const {
+  const int x0 = area.x + col * area.width / cols;
+  const int x1 = area.x + (col + 1) * area.width / cols;
+  const int y0 = area.y + row * area.height / rows;
+  const int y1 = area.y + (row + 1) * area.height / rows;
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
+namespace {
+
+// The largest c with c * size / n <= offset (integer division as in Cell).
+int SliceOf(int offset, int size, int n) { return ((offset + 1) * n + size - 1) / size - 1; }
+
+}  // namespace
+
+int FastGrid::ColOf(int x) const { return SliceOf(x - area.x, area.width, cols); }
+int FastGrid::RowOf(int y) const { return SliceOf(y - area.y, area.height, rows); }
+
 void DetectGridFast(const cv::Mat& image, const cv::Rect& area, const GridFastParams& params,
-                    FastScratch& scratch, std::vector<FastCorner>& corners) {
+                    FastScratch& scratch, std::vector<FastCorner>& corners, const std::vector<bool>& skip_cells) {
   DLSLAM_CHECK(params.threshold_min >= 1 && params.threshold_min <= params.threshold_initial,
                "FAST thresholds min {} initial {}", params.threshold_min,
                params.threshold_initial);
   DLSLAM_CHECK_GT(params.cell_size, 0, "FAST cell size");
   if (area.width <= 0 || area.height <= 0) return;
   CheckRegion(image, area, 4, "DetectGridFast");
+  const FastGrid grid(area, params.cell_size);
+  const auto n_cells = static_cast<size_t>(grid.cols * grid.rows);
+  DLSLAM_CHECK(skip_cells.empty() || skip_cells.size() == n_cells, "DetectGridFast: {} cell flags for {} cells",
+               skip_cells.size(), n_cells);
+  const bool skipping = std::find(skip_cells.begin(), skip_cells.end(), true) != skip_cells.end();
+  const auto skipped = [&](int row, int col) {
+    return skipping && skip_cells[static_cast<size_t>(row * grid.cols + col)];
+  };
   // Scored one pixel beyond the area so that suppression at its edge is exact.
   const cv::Rect scored_area(area.x - 1, area.y - 1, area.width + 2, area.height + 2);
 
-  scratch.candidates.clear();
-  ComputeFastScores(image, scored_area, params.threshold_initial, scratch.scores,
-                    scratch.candidates);
   const size_t first = corners.size();
-  SuppressNonMaxima(scratch.scores, scratch.candidates, area, params.threshold_initial, corners);
+  if (!skipping) {
+    scratch.candidates.clear();
+    ComputeFastScores(image, scored_area, params.threshold_initial, scratch.scores, scratch.candidates);
+    SuppressNonMaxima(scratch.scores, scratch.candidates, area, params.threshold_initial, corners);
+  } else {
+    // Each run of searched cells along a row of cells, scored one pixel
+    // around; sorted back into the whole area's row-by-row order after.
+    for (int row = 0; row < grid.rows; ++row) {
+      for (int col = 0; col < grid.cols;) {
+        if (skipped(row, col)) {
+          ++col;
+          continue;
+        }
+        int end = col;
+        while (end < grid.cols && !skipped(row, end)) ++end;
+        const cv::Rect run = grid.Cell(row, col) | grid.Cell(row, end - 1);
+        scratch.candidates.clear();
+        ComputeFastScores(image, cv::Rect(run.x - 1, run.y - 1, run.width + 2, run.height + 2) & scored_area,
+                          params.threshold_initial, scratch.scores, scratch.candidates);
+        SuppressNonMaxima(scratch.scores, scratch.candidates, run, params.threshold_initial, corners);
+        col = end;
+      }
+    }
+    std::sort(corners.begin() + static_cast<std::ptrdiff_t>(first), corners.end(),
+              [](const FastCorner& a, const FastCorner& b) { return a.y != b.y ? a.y < b.y : a.x < b.x; });
+  }
   if (params.threshold_min == params.threshold_initial) return;
 
-  // Cells: n equal-ish slices per axis, slice c starting at c * size / n.
-  const int n_cols = std::max(1, (area.width + params.cell_size / 2) / params.cell_size);
-  const int n_rows = std::max(1, (area.height + params.cell_size / 2) / params.cell_size);
-  const auto slice_of = [](int offset, int size, int n) {
-    // The largest c with c * size / n <= offset (integer division as above).
-    return ((offset + 1) * n + size - 1) / size - 1;
-  };
-  std::vector<int> cell_counts(static_cast<size_t>(n_cols * n_rows), 0);
+  std::vector<int> cell_counts(n_cells, 0);
   for (size_t i = first; i < corners.size(); ++i) {
-    const int col = slice_of(corners[i].x - area.x, area.width, n_cols);
-    const int row = slice_of(corners[i].y - area.y, area.height, n_rows);
-    ++cell_counts[static_cast<size_t>(row * n_cols + col)];
+    ++cell_counts[static_cast<size_t>(grid.RowOf(corners[i].y) * grid.cols + grid.ColOf(corners[i].x))];
   }
-  for (int row = 0; row < n_rows; ++row) {
-    const int y0 = area.y + row * area.height / n_rows;
-    const int y1 = area.y + (row + 1) * area.height / n_rows;
-    for (int col = 0; col < n_cols; ++col) {
-      if (cell_counts[static_cast<size_t>(row * n_cols + col)] > 0) continue;
-      const int x0 = area.x + col * area.width / n_cols;
-      const int x1 = area.x + (col + 1) * area.width / n_cols;
+  for (int row = 0; row < grid.rows; ++row) {
+    for (int col = 0; col < grid.cols; ++col) {
+      if (cell_counts[static_cast<size_t>(row * grid.cols + col)] > 0 || skipped(row, col)) continue;
+      const cv::Rect cell = grid.Cell(row, col);
       // Rescored one pixel around the cell too, for exact suppression.
-      const cv::Rect ring = cv::Rect(x0 - 1, y0 - 1, x1 - x0 + 2, y1 - y0 + 2) & scored_area;
+      const cv::Rect ring = cv::Rect(cell.x - 1, cell.y - 1, cell.width + 2, cell.height + 2) & scored_area;
       scratch.candidates.clear();
       ComputeFastScores(image, ring, params.threshold_min, scratch.scores, scratch.candidates);
-      SuppressNonMaxima(scratch.scores, scratch.candidates, cv::Rect(x0, y0, x1 - x0, y1 - y0),
-                        params.threshold_min, corners);
+      SuppressNonMaxima(scratch.scores, scratch.candidates, cell, params.threshold_min, corners);
     }
   }
 }

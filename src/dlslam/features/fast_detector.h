@@ -52,10 +52,27 @@ struct FastScratch {
   std::vector<cv::Point> candidates;
 };
 
+// The cells of DetectGridFast: `area` cut into n equal-ish slices per axis
+// (n = area side / cell_size, rounded), slice c starting at c * side / n.
+struct FastGrid {
+  FastGrid(const cv::Rect& area, int cell_size);
+  cv::Rect Cell(int row, int col) const;
+  int ColOf(int x) const;  // of a pixel inside the area
+  int RowOf(int y) const;
+  cv::Rect area;
+  int cols = 1;
+  int rows = 1;
+};
+
 // FAST over `area` (4 px or more inside the image) cell by cell: corners at
 // the initial threshold, and in each cell where none survived non-maximum
 // suppression, corners at the minimum threshold. Appends to `corners`.
+// `skip_cells`: empty, or one flag per cell of FastGrid(area,
+// params.cell_size), row-major: cells whose corners the caller would drop
+// anyway (wholly inside an exclusion mask) are not searched. The corners of
+// the other cells are exactly those found without skipping, in the same order.
 void DetectGridFast(const cv::Mat& image, const cv::Rect& area, const GridFastParams& params,
-                    FastScratch& scratch, std::vector<FastCorner>& corners);
+                    FastScratch& scratch, std::vector<FastCorner>& corners,
+                    const std::vector<bool>& skip_cells = {});
 
 }  // namespace dlslam::features

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <random>
 #include <set>
+#include <tuple>
 #include <utility>
 
 #include "dlslam/features/test_images.h"
@@ -208,6 +209,64 @@ TEST(DetectGridFastTest, ListsEachPixelOnceWhateverTheCellSize) {
       for (const FastCorner& c : corners) unique.emplace(c.x, c.y);
       EXPECT_EQ(unique.size(), corners.size()) << "cell " << cell << " area " << area;
       EXPECT_GT(corners.size(), 10u);
+    }
+  }
+}
+
+// Skipping cells (those wholly inside an exclusion mask) changes nothing for
+// the others: the same corners, scores and order as the full search with the
+// skipped cells' corners dropped, fallback cells included.
+TEST(DetectGridFastTest, SkippedCellsLeaveTheOthersExactlyAsTheyWere) {
+  cv::Mat image = TestImage().clone();
+  cv::Mat right = image(cv::Rect(image.cols / 2, 0, image.cols / 2, image.rows));
+  right.convertTo(right, CV_8U, 0.2, 100);  // cells that fall back
+  cv::RNG rng(7);
+  FastScratch scratch;
+  for (int cell : {13, 30, 47}) {
+    const cv::Rect area(19, 19, image.cols - 38, image.rows - 38);
+    const FastGrid grid(area, cell);
+    std::vector<FastCorner> all;
+    DetectGridFast(image, area, {20, 7, cell}, scratch, all);
+    for (double share : {0.1, 0.5, 0.9}) {
+      std::vector<bool> skip(static_cast<size_t>(grid.rows * grid.cols));
+      for (size_t k = 0; k < skip.size(); ++k) skip[k] = rng.uniform(0.0, 1.0) < share;
+      std::vector<FastCorner> expected;
+      for (const FastCorner& c : all) {
+        if (!skip[static_cast<size_t>(grid.RowOf(c.y) * grid.cols + grid.ColOf(c.x))]) expected.push_back(c);
+      }
+      std::vector<FastCorner> got;
+      DetectGridFast(image, area, {20, 7, cell}, scratch, got, skip);
+      ASSERT_EQ(got.size(), expected.size()) << "cell " << cell << " share " << share;
+      for (size_t k = 0; k < got.size(); ++k) {
+        ASSERT_EQ(std::tie(got[k].x, got[k].y, got[k].score), std::tie(expected[k].x, expected[k].y, expected[k].score))
+            << "corner " << k << " cell " << cell << " share " << share;
+      }
+      EXPECT_LT(got.size(), all.size());
+    }
+  }
+  std::vector<FastCorner> corners;
+  EXPECT_THROW(DetectGridFast(image, cv::Rect(19, 19, 100, 100), {20, 7, 30}, scratch, corners, std::vector<bool>(3)),
+               Error);
+}
+
+TEST(FastGridTest, CellsTileTheAreaAndEachPixelFindsItsCell) {
+  for (const cv::Rect& area : {cv::Rect(19, 19, 602, 442), cv::Rect(3, 5, 29, 7), cv::Rect(0, 0, 31, 90)}) {
+    for (int size : {1, 7, 30, 100}) {
+      const FastGrid grid(area, size);
+      int covered = 0;
+      for (int row = 0; row < grid.rows; ++row) {
+        for (int col = 0; col < grid.cols; ++col) {
+          const cv::Rect cell = grid.Cell(row, col);
+          covered += cell.area();
+          for (int y = cell.y; y < cell.y + cell.height; ++y) {
+            for (int x = cell.x; x < cell.x + cell.width; ++x) {
+              ASSERT_EQ(grid.RowOf(y), row);
+              ASSERT_EQ(grid.ColOf(x), col);
+            }
+          }
+        }
+      }
+      EXPECT_EQ(covered, area.area()) << area << " cell " << size;
     }
   }
 }

@@ -64,6 +64,27 @@ void BM_OursExtract(benchmark::State& state) {
 }
 BENCHMARK(BM_OursExtract)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
 
+// As the system extracts again outside the removed regions in a crowd: the
+// static extractor's lower FAST thresholds (8 / 4), people as two upright
+// bands over 40 % of the image (argument: OpenCV threads).
+void BM_OursExtractOutsideMask(benchmark::State& state) {
+  SetThreads(state);
+  OrbOptions options;
+  options.fast_threshold_initial = 8;
+  options.fast_threshold_min = 4;
+  OrbExtractor orb(options);
+  cv::Mat people(BenchImage().size(), CV_8UC1, cv::Scalar(0));
+  people(cv::Rect(100, 60, 128, 420)).setTo(255);
+  people(cv::Rect(380, 40, 128, 440)).setTo(255);
+  OrbFeatures features;
+  for (auto _ : state) {
+    orb.Extract(BenchImage(), people, features);
+    benchmark::DoNotOptimize(features.descriptors.data);
+  }
+  AddContext(state, features.keypoints.size());
+}
+BENCHMARK(BM_OursExtractOutsideMask)->Arg(1)->Unit(benchmark::kMillisecond);
+
 void CvOrb(benchmark::State& state, cv::ORB::ScoreType score) {
   SetThreads(state);
   const auto orb = cv::ORB::create(1000, 1.2f, 8, 31, 0, 2, score, 31, 20);

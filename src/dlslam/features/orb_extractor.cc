@@ -51,10 +51,31 @@ void OrbExtractor::DetectLevel(int level, const cv::Mat& exclusion_mask) {
   const cv::Rect area(border, border, image.cols - 2 * border, image.rows - 2 * border);
   const GridFastParams fast{options_.fast_threshold_initial, options_.fast_threshold_min,
                             options_.cell_size};
-  DetectGridFast(image, area, fast, fast_scratch_, corners);
+  const double scale = level_scales_[l];
+  // Cells wholly inside the exclusion mask are not searched: in a crowd
+  // that is a third of the image or more.
+  std::vector<bool> skip_cells;
+  if (!exclusion_mask.empty()) {
+    const FastGrid grid(area, options_.cell_size);
+    skip_cells.resize(static_cast<size_t>(grid.rows * grid.cols));
+    const auto to_mask = [scale](int v, int limit) { return std::min(static_cast<int>(std::lround(v * scale)), limit); };
+    for (int row = 0; row < grid.rows; ++row) {
+      for (int col = 0; col < grid.cols; ++col) {
+        const cv::Rect cell = grid.Cell(row, col);
+        // Every pixel of the cell looks the mask up inside this box.
+        const int x0 = to_mask(cell.x, exclusion_mask.cols - 1);
+        const int x1 = to_mask(cell.x + cell.width - 1, exclusion_mask.cols - 1) + 1;
+        const int y0 = to_mask(cell.y, exclusion_mask.rows - 1);
+        const int y1 = to_mask(cell.y + cell.height - 1, exclusion_mask.rows - 1) + 1;
+        const int excluded = excluded_integral_.at<int>(y1, x1) - excluded_integral_.at<int>(y0, x1) -
+                             excluded_integral_.at<int>(y1, x0) + excluded_integral_.at<int>(y0, x0);
+        skip_cells[static_cast<size_t>(row * grid.cols + col)] = excluded == 255 * (x1 - x0) * (y1 - y0);
+      }
+    }
+  }
+  DetectGridFast(image, area, fast, fast_scratch_, corners, skip_cells);
 
   if (!exclusion_mask.empty()) {
-    const double scale = level_scales_[l];
     std::erase_if(corners, [&](const FastCorner& c) {
       const int mx = std::min(static_cast<int>(std::lround(c.x * scale)), exclusion_mask.cols - 1);
       const int my = std::min(static_cast<int>(std::lround(c.y * scale)), exclusion_mask.rows - 1);
@@ -98,6 +119,10 @@ void OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask,
                  exclusion_mask.rows);
   }
   PrepareImage(image);
+  if (!exclusion_mask.empty()) {
+    cv::compare(exclusion_mask, 0, excluded_, cv::CMP_NE);  // 255 where excluded
+    cv::integral(excluded_, excluded_integral_, CV_32S);
+  }
 
   size_t total = 0;
   for (int level = 0; level < options_.n_levels; ++level) {

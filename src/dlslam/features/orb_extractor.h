@@ -76,6 +76,7 @@ class OrbExtractor {
   cv::Mat grey_;
   FastScratch fast_scratch_;
   std::vector<std::vector<FastCorner>> level_corners_;
+  cv::Mat excluded_, excluded_integral_;  // the exclusion mask as 0/255, and its integral image
 };
 
 }  // namespace dlslam::features
