@@ -19,10 +19,6 @@ namespace dlslam {
 
 namespace {
 
-// Frames whose depth and pose are kept to carry an older mask to the current
-// frame (asynchronous masks are at most a few frames old).
-constexpr std::size_t kRecentFrames = 64;
-
 std::unique_ptr<place::KeyFrameIndex> MakeKeyFrameIndex(const SystemOptions& options) {
   if (!options.relocalization && !options.loop_closing) return nullptr;
   const std::filesystem::path file = place::FindVocabulary(options.vocabulary);
@@ -51,18 +47,6 @@ bool SameCamera(const CameraIntrinsics& a, const CameraIntrinsics& b) {
   return a.width == b.width && a.height == b.height && close(a.fx, b.fx) && close(a.fy, b.fy) &&
          close(a.cx, b.cx) && close(a.cy, b.cy) && close(a.k1, b.k1) && close(a.k2, b.k2) && close(a.p1, b.p1) &&
          close(a.p2, b.p2) && close(a.k3, b.k3) && close(a.bf, b.bf);
-}
-
-// The network's image of a frame: BGR, and a copy of it when the worker
-// may read it after the caller has reused the image.
-cv::Mat NetworkImage(const cv::Mat& colour, bool copy) {
-  cv::Mat bgr;
-  if (colour.type() == CV_8UC1) {
-    cv::cvtColor(colour, bgr, cv::COLOR_GRAY2BGR);
-  } else {
-    bgr = copy ? colour.clone() : colour;
-  }
-  return bgr;
 }
 
 std::string Describe(const CameraIntrinsics& c) {
@@ -121,12 +105,6 @@ features::OrbOptions StaticOrbOptions() {
   return options;
 }
 
-semantic::SegmenterOptions SystemSegmenterOptions() {
-  semantic::SegmenterOptions options;
-  options.threads = 1;
-  return options;
-}
-
 const char* ToString(PoseSource source) {
   switch (source) {
     case PoseSource::kTracked: return "tracked";
@@ -136,21 +114,6 @@ const char* ToString(PoseSource source) {
     case PoseSource::kNone: return "none";
   }
   return "?";
-}
-
-void SemanticThreadOptions::Check() const {
-  segmenter.Check();
-  worker.Check();
-  DLSLAM_CHECK(carry_grow_px >= 0 && carry_grow_px <= max_carry_grow_px && max_carry_grow_px <= 1000,
-               "SemanticThreadOptions: carry growth {} px per frame, at most {} px: need 0 <= growth <= max <= 1000",
-               carry_grow_px, max_carry_grow_px);
-  DLSLAM_CHECK(wait_when_removed_share > 0 && wait_when_removed_share <= 1,
-               "SemanticThreadOptions::wait_when_removed_share {} outside (0, 1]", wait_when_removed_share);
-  DLSLAM_CHECK(carried_segment_every >= 1 && carried_segment_every <= 1000,
-               "SemanticThreadOptions::carried_segment_every {} outside [1, 1000]", carried_segment_every);
-  DLSLAM_CHECK(keyframe_mask_max_wait_frames >= 0 && keyframe_mask_max_wait_frames <= 100,
-               "SemanticThreadOptions::keyframe_mask_max_wait_frames {} outside [0, 100]",
-               keyframe_mask_max_wait_frames);
 }
 
 void SystemOptions::Check() const {
@@ -185,16 +148,8 @@ SlamSystem::SlamSystem(const CameraIntrinsics& camera, const SystemOptions& opti
     loop_closer_ = std::make_unique<LoopCloser>(options_.loop, &map_, index_.get(), &mapper_, &timings_);
   }
   if (options_.semantic.network && UsesSemanticPrior(options_.dynamic.mode)) {
-    // Loads the model now: a missing or broken file is an InputError here,
-    // not on the first frame.
-    semantic::SegmentationWorkerOptions worker = options_.semantic.worker;
-    // Asynchronous: one skippable frame waiting at most (TrySubmit), so that
-    // the newest mask is at most one network run older than the frame being
-    // segmented, and room for a held keyframe's frame beside it.
-    if (!options_.semantic.wait_for_masks) worker.queue_capacity = 2;
-    segmentation_ = std::make_unique<semantic::SegmentationWorker>(semantic::MakeSegmenter(options_.semantic.segmenter),
-                                                                   worker);
-    if (!options_.semantic.wait_for_masks) warper_ = std::make_unique<dynamic::MaskWarper>(camera_);
+    semantic_ = std::make_unique<SemanticFeed>(options_.semantic, camera_, &timings_,
+                                               [this] { return tracker_.PredictedCamFromWorld(); });
   }
   if (options_.sequential) return;
   tracker_.SetMappingBacklog([this] { return mapper_.backlog(); });
@@ -221,48 +176,19 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   Stopwatch total;
   DynamicInputs inputs = dynamic;
   const long frame_id = counts_.frames;
-  cv::Mat bgr;  // what the network sees of this frame
-  std::optional<std::shared_future<semantic::SegmentationResult>> own_masks;  // asynchronous, if it is segmented
-  bool masks_carried = false;  // the frame uses an earlier frame's masks
-  if (segmentation_ && !inputs.semantic_prior) {
-    // Handed to the semantic thread before ORB extraction. Asynchronous, the
-    // worker may read the frame after TrackRgbd returns: it gets a copy.
-    bgr = NetworkImage(colour, /*copy=*/warper_ != nullptr);
-    if (warper_) {
-      recent_.push_back({frame_id, depth.empty() ? cv::Mat() : depth.clone(), std::nullopt});
-      if (recent_.size() > kRecentFrames) recent_.pop_front();
-    }
+  SemanticFeed::FrameMasks masks;
+  if (semantic_ && !inputs.semantic_prior) {
     // Asynchronous masks once tracking runs (the first keyframe, the map's
     // foundation, waits for its own masks) and the view is not crowded.
     const bool crowded = last_removed_share_ >= options_.semantic.wait_when_removed_share ||
                          tracker_.state() != TrackingState::kOk;
-    if (warper_ && !crowded) {
-      ReleaseHeldKeyFrame(/*wait=*/false);
-      if (frame_id - last_segmented_ >= options_.semantic.carried_segment_every) {
-        own_masks = segmentation_->TrySubmit(bgr, frame_id);  // a busy network skips the frame
-        if (own_masks) last_segmented_ = frame_id;
-      }
-      masks_carried = true;
-      inputs.semantic_prior = [this, frame_id] { return CarriedMasks(frame_id); };
-    } else {
-      // The dynamic stage waits for the masks only after ORB extraction.
-      std::shared_future<semantic::SegmentationResult> pending;
-      // Frames segmented ahead but never tracked are dropped.
-      while (!ahead_.empty() && ahead_.front().timestamp < timestamp) ahead_.pop_front();
-      if (!ahead_.empty() && ahead_.front().timestamp == timestamp) {
-        pending = ahead_.front().masks;  // segmented while the last frame was tracked
-        ahead_.pop_front();
-        ++counts_.frames_segmented_ahead;
-      } else {
-        pending = segmentation_->Submit(bgr, warper_ ? frame_id : -1);
-      }
-      last_segmented_ = frame_id;
-      inputs.semantic_prior = [this, pending] {
-        const semantic::SegmentationResult& masks = pending.get();
-        timings_.Add("semantic", masks.seconds * 1e3);
-        return dynamic::SemanticMasks{masks.dynamic_mask, masks.movable_mask};
-      };
-    }
+    const bool carry = semantic_->asynchronous() && !crowded;
+    if (carry) ReleaseHeldKeyFrame(/*wait=*/false);
+    // Handed to the semantic thread before ORB extraction; the dynamic
+    // stage waits for its own masks only after it.
+    masks = semantic_->ForFrame(frame_id, colour, depth, timestamp, carry);
+    counts_.frames_segmented_ahead += masks.segmented_ahead;
+    inputs.semantic_prior = masks.prior;
   }
   Stopwatch watch;
   const features::OrbFeatures features = extractor_.Extract(colour);
@@ -298,20 +224,15 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   // A keyframe from carried masks waits for its own (ReleaseHeldKeyFrame).
   // A frame that waited for its own masks has the held keyframe's too (they
   // were queued before): it goes into the map before this frame is tracked.
-  if (!masks_carried) ReleaseHeldKeyFrame(/*wait=*/true);
+  if (!masks.carried) ReleaseHeldKeyFrame(/*wait=*/true);
   const TrackingResult result =
-      tracker_.Track(frame, /*hold_keyframe=*/masks_carried && options_.semantic.keyframes_wait_for_own_masks);
+      tracker_.Track(frame, /*hold_keyframe=*/masks.carried && options_.semantic.keyframes_wait_for_own_masks);
   timings_.Add("tracking", watch.ElapsedMs());
-  if (warper_ && !recent_.empty() && recent_.back().id == frame_id) recent_.back().cam_from_world = result.cam_from_world;
+  if (semantic_) semantic_->SetPose(frame_id, result.cam_from_world);
   if (result.held_keyframe && !held_keyframe_) {  // one at a time: a second one is simply not made
     HeldKeyFrame held;
     held.candidate = *result.held_keyframe;
-    if (own_masks) {
-      held.masks = *own_masks;
-    } else {
-      held.masks = segmentation_->Submit(bgr, frame_id);
-      last_segmented_ = frame_id;
-    }
+    held.masks = masks.own ? *masks.own : semantic_->Segment(masks.image, frame_id);
     held.timestamp = timestamp;
     if (options_.keep_keyframe_images) {
       held.colour = colour.clone();
@@ -378,12 +299,9 @@ void SlamSystem::CheckColour(const cv::Mat& colour, double timestamp) const {
 
 void SlamSystem::SegmentAhead(const cv::Mat& colour, double timestamp) {
   DLSLAM_CHECK(!shut_down_, "the system was shut down");
-  constexpr std::size_t kMaxAhead = 2;  // the frame being tracked and the next
-  if (!segmentation_ || warper_ || ahead_.size() >= kMaxAhead) return;
-  if (!ahead_.empty() && timestamp <= ahead_.back().timestamp) return;  // not in frame order
+  if (!semantic_ || semantic_->asynchronous()) return;
   CheckColour(colour, timestamp);
-  // A copy: the caller's image may be reused before the worker reads it.
-  ahead_.push_back({timestamp, segmentation_->Submit(NetworkImage(colour, /*copy=*/true))});
+  semantic_->SegmentAhead(colour, timestamp);
 }
 
 void SlamSystem::KeyFrameMade(KeyFrameId id, double timestamp, const cv::Mat& colour, const cv::Mat& depth,
@@ -489,37 +407,6 @@ void SlamSystem::MarkLost(double timestamp) {
   if (last_state_ != TrackingState::kNotInitialized) last_state_ = TrackingState::kLost;
 }
 
-dynamic::SemanticMasks SlamSystem::CarriedMasks(long frame_id) {
-  const Stopwatch watch;
-  const std::optional<semantic::SegmentationWorker::Published> latest = segmentation_->Latest();
-  if (!latest) return {};  // nothing segmented yet: geometry alone
-  const semantic::SegmentationResult& masks = latest->result;
-  const long age = frame_id - latest->frame_id;
-  if (latest->frame_id != last_timed_mask_) {  // the network's time, once per segmented frame
-    timings_.Add("semantic", masks.seconds * 1e3);
-    last_timed_mask_ = latest->frame_id;
-  }
-  timings_.Add("semantic_age_frames", static_cast<double>(age));
-  if (age <= 0) return {masks.dynamic_mask, masks.movable_mask};
-  // Frame s's depth and pose, and the prediction of this frame's.
-  const RecentFrame* source = nullptr;
-  for (const RecentFrame& r : recent_) {
-    if (r.id == latest->frame_id) source = &r;
-  }
-  const std::optional<SE3d> predicted = tracker_.PredictedCamFromWorld();
-  SE3d t_from_s;  // identity when a pose is missing: the masks stay, grown
-  if (source && source->cam_from_world && predicted) t_from_s = *predicted * source->cam_from_world->Inverse();
-  const cv::Mat depth = source ? source->depth : cv::Mat();
-  const int grow = std::min(options_.semantic.max_carry_grow_px, options_.semantic.carry_grow_px * static_cast<int>(age));
-  dynamic::SemanticMasks carried;
-  carried.dynamic = warper_->Warp(masks.dynamic_mask, depth, t_from_s, grow);
-  if (!masks.movable_mask.empty() && cv::countNonZero(masks.movable_mask) > 0) {
-    carried.movable = warper_->Warp(masks.movable_mask, depth, t_from_s, grow);
-  }
-  timings_.Add("semantic_carry", watch.ElapsedMs());
-  return carried;
-}
-
 void SlamSystem::KeepKeyFrameImages(KeyFrameId id, double timestamp, const cv::Mat& colour, const cv::Mat& depth,
                                     const cv::Mat& removed) {
   // Forget culled keyframes first (local mapping culls in its thread).
@@ -569,7 +456,7 @@ void SlamSystem::Shutdown() {
   } catch (const std::exception& e) {
     spdlog::warn("the last keyframe is left out of the map: its segmentation failed: {}", e.what());
   }
-  if (segmentation_) segmentation_->Stop();
+  if (semantic_) semantic_->Stop();
   mapper_.Stop();
   if (loop_closer_) loop_closer_->Stop();
   shut_down_ = true;

@@ -20,14 +20,13 @@
 #include "dlslam/data/camera.h"
 #include "dlslam/data/trajectory.h"
 #include "dlslam/dense/tsdf_volume.h"
-#include "dlslam/dynamic/mask_warp.h"
 #include "dlslam/features/orb_extractor.h"
 #include "dlslam/loop/loop_closer.h"
 #include "dlslam/map/map.h"
 #include "dlslam/mapping/local_mapper.h"
 #include "dlslam/place/keyframe_index.h"
-#include "dlslam/semantic/segmentation_worker.h"
 #include "dlslam/system/dynamic_stage.h"
+#include "dlslam/system/semantic_feed.h"
 #include "dlslam/tracking/tracker.h"
 #include "dlslam/util/timing.h"
 
@@ -39,62 +38,6 @@ namespace dlslam {
 // static re-extraction found 107-300 keypoints at 20 / 7 in the most
 // crowded frames).
 features::OrbOptions StaticOrbOptions();
-
-// The network's options in the system: inference on one OpenCV thread.
-// OpenCV's thread count is process-wide, and the system's own threads
-// (tracking, network, local mapping, frame reading) already fill a small
-// machine: OpenCV's pool on top of them only spins (real Bonn crowd, 2
-// cores, full mode with asynchronous masks: 17.2 s of CPU instead of 22.2 s,
-// 11.3 s wall instead of 13.2 s; waiting for masks: 13.8 s wall either way).
-semantic::SegmenterOptions SystemSegmenterOptions();
-
-// The semantic thread of modes semantic and full.
-struct SemanticThreadOptions {
-  // Segment every frame that comes without a prior of its own
-  // (DynamicInputs::semantic_prior empty) with the network, in the system's
-  // worker thread. false: the caller always gives the prior (ground-truth
-  // masks, a folder of masks, its own network); no model is loaded.
-  bool network = true;
-  // The network: model file ("" = the shipped one), input size, classes,
-  // mask margin, OpenCV threads (SystemSegmenterOptions).
-  semantic::SegmenterOptions segmenter = SystemSegmenterOptions();
-  // The worker: queue length, rate (segment every k-th frame, propagating
-  // the masks to the frames between).
-  semantic::SegmentationWorkerOptions worker;
-  // true: each frame waits for its own masks (after ORB extraction). false
-  // (asynchronous, experimental): the tracker never waits; a frame is
-  // segmented only when the network is free, and each frame uses the newest
-  // finished masks carried to it with the predicted camera motion and that
-  // frame's depth (dynamic::MaskWarper), grown by carry_grow_px per frame of
-  // age; geometry covers what moved in between. segment_every is unused.
-  bool wait_for_masks = true;
-  int carry_grow_px = 8;       // [px / frame of age]
-  int max_carry_grow_px = 24;  // [px]
-  // Asynchronous only: a frame waits for its own masks after one whose
-  // dynamic stage removed at least this share of its keypoints, or while
-  // tracking is not ok. In a crowd a carried mask is too stale (people walk
-  // 10-20 px a frame) and the few static keypoints left are outnumbered by
-  // the people's edges (Bonn crowd: ATE 0.022-0.14 m carrying always,
-  // 0.016-0.058 m with this at 0.75, 0.016-0.027 m at 0.6 where most
-  // frames wait). (0, 1]; 1 = only when everything was removed.
-  double wait_when_removed_share = 0.75;
-  // Asynchronous only: a keyframe made from a frame with carried masks is
-  // held back from the map until that frame's own masks arrive (it is
-  // segmented, unless it was already), and only its keypoints outside them
-  // enter the map; tracking goes on meanwhile. After
-  // keyframe_mask_max_wait_frames further frames the tracker waits for them
-  // [frames; the network takes about one frame's time, and may be finishing
-  // another].
-  bool keyframes_wait_for_own_masks = true;
-  int keyframe_mask_max_wait_frames = 3;
-  // Asynchronous only: a frame with carried masks is offered to the network
-  // only when at least this many frames passed since the last frame handed
-  // to it (waiting frames and held keyframes count) [frames]; 1 = whenever
-  // the network is free.
-  int carried_segment_every = 1;
-
-  void Check() const;
-};
 
 struct SystemOptions {
   features::OrbOptions orb;
@@ -303,15 +246,7 @@ class SlamSystem {
   std::unique_ptr<LoopCloser> loop_closer_;  // null without loop closing
   // The network in its thread; null in modes orb and geometry, or without
   // options.semantic.network.
-  std::unique_ptr<semantic::SegmentationWorker> segmentation_;
-  // Asynchronous masks (!options.semantic.wait_for_masks): the recent
-  // frames' depth and pose, to carry a finished mask to the current frame.
-  struct RecentFrame {
-    long id = 0;
-    cv::Mat depth;
-    std::optional<SE3d> cam_from_world;
-  };
-  dynamic::SemanticMasks CarriedMasks(long frame_id);
+  std::unique_ptr<SemanticFeed> semantic_;
   // A keyframe waiting for its frame's own masks (one at a time).
   struct HeldKeyFrame {
     KeyFrameCandidate candidate;
@@ -327,18 +262,8 @@ class SlamSystem {
   void KeyFrameMade(KeyFrameId id, double timestamp, const cv::Mat& colour, const cv::Mat& depth,
                     const cv::Mat& removed);
   std::optional<HeldKeyFrame> held_keyframe_;
-  // SegmentAhead's frames, oldest first: their timestamps and masks.
-  struct AheadFrame {
-    double timestamp = 0.0;
-    std::shared_future<semantic::SegmentationResult> masks;
-  };
-  std::deque<AheadFrame> ahead_;
   // Throws dlslam::Error for an empty colour image or one of another size than the camera's.
   void CheckColour(const cv::Mat& colour, double timestamp) const;
-  std::deque<RecentFrame> recent_;
-  std::unique_ptr<dynamic::MaskWarper> warper_;
-  long last_timed_mask_ = -1;  // the newest carried mask's frame, timed as "semantic"
-  long last_segmented_ = -1000000;  // the newest frame handed to the network
   // Keyframes' images for the dense map (options.keep_keyframe_images).
   struct KeyFrameImages {
     double timestamp = 0.0;
