@@ -218,12 +218,12 @@ void DetectGridFast(const cv::Mat& image, const cv::Rect& area, const GridFastPa
   if (area.width <= 0 || area.height <= 0) return;
   CheckRegion(image, area, 4, "DetectGridFast");
   const FastGrid grid(area, params.cell_size);
-  const auto n_cells = static_cast<size_t>(grid.cols * grid.rows);
+  const auto n_cells = static_cast<size_t>(grid.size());
   DLSLAM_CHECK(skip_cells.empty() || skip_cells.size() == n_cells, "DetectGridFast: {} cell flags for {} cells",
                skip_cells.size(), n_cells);
   const bool skipping = std::find(skip_cells.begin(), skip_cells.end(), true) != skip_cells.end();
   const auto skipped = [&](int row, int col) {
-    return skipping && skip_cells[static_cast<size_t>(row * grid.cols + col)];
+    return skipping && skip_cells[static_cast<size_t>(grid.Index(row, col))];
   };
   // Scored one pixel beyond the area so that suppression at its edge is exact.
   const cv::Rect scored_area(area.x - 1, area.y - 1, area.width + 2, area.height + 2);
@@ -259,11 +259,11 @@ void DetectGridFast(const cv::Mat& image, const cv::Rect& area, const GridFastPa
 
   std::vector<int> cell_counts(n_cells, 0);
   for (size_t i = first; i < corners.size(); ++i) {
-    ++cell_counts[static_cast<size_t>(grid.RowOf(corners[i].y) * grid.cols + grid.ColOf(corners[i].x))];
+    ++cell_counts[static_cast<size_t>(grid.Index(grid.RowOf(corners[i].y), grid.ColOf(corners[i].x)))];
   }
   for (int row = 0; row < grid.rows; ++row) {
     for (int col = 0; col < grid.cols; ++col) {
-      if (cell_counts[static_cast<size_t>(row * grid.cols + col)] > 0 || skipped(row, col)) continue;
+      if (cell_counts[static_cast<size_t>(grid.Index(row, col))] > 0 || skipped(row, col)) continue;
       const cv::Rect cell = grid.Cell(row, col);
       // Rescored one pixel around the cell too, for exact suppression.
       const cv::Rect ring = cv::Rect(cell.x - 1, cell.y - 1, cell.width + 2, cell.height + 2) & scored_area;

@@ -59,6 +59,8 @@ struct FastGrid {
   cv::Rect Cell(int row, int col) const;
   int ColOf(int x) const;  // of a pixel inside the area
   int RowOf(int y) const;
+  int Index(int row, int col) const { return row * cols + col; }  // row-major
+  int size() const { return rows * cols; }
   cv::Rect area;
   int cols = 1;
   int rows = 1;

@@ -228,11 +228,11 @@ TEST(DetectGridFastTest, SkippedCellsLeaveTheOthersExactlyAsTheyWere) {
     std::vector<FastCorner> all;
     DetectGridFast(image, area, {20, 7, cell}, scratch, all);
     for (double share : {0.1, 0.5, 0.9}) {
-      std::vector<bool> skip(static_cast<size_t>(grid.rows * grid.cols));
+      std::vector<bool> skip(static_cast<size_t>(grid.size()));
       for (size_t k = 0; k < skip.size(); ++k) skip[k] = rng.uniform(0.0, 1.0) < share;
       std::vector<FastCorner> expected;
       for (const FastCorner& c : all) {
-        if (!skip[static_cast<size_t>(grid.RowOf(c.y) * grid.cols + grid.ColOf(c.x))]) expected.push_back(c);
+        if (!skip[static_cast<size_t>(grid.Index(grid.RowOf(c.y), grid.ColOf(c.x)))]) expected.push_back(c);
       }
       std::vector<FastCorner> got;
       DetectGridFast(image, area, {20, 7, cell}, scratch, got, skip);

@@ -52,35 +52,31 @@ void OrbExtractor::DetectLevel(int level, const cv::Mat& exclusion_mask) {
   const GridFastParams fast{options_.fast_threshold_initial, options_.fast_threshold_min,
                             options_.cell_size};
   const double scale = level_scales_[l];
+  // A level pixel looks the (level-0) exclusion mask up here.
+  const auto mask_x = [&](int x) { return std::min(static_cast<int>(std::lround(x * scale)), exclusion_mask.cols - 1); };
+  const auto mask_y = [&](int y) { return std::min(static_cast<int>(std::lround(y * scale)), exclusion_mask.rows - 1); };
   // Cells wholly inside the exclusion mask are not searched: in a crowd
   // that is a third of the image or more.
   std::vector<bool> skip_cells;
   if (!exclusion_mask.empty()) {
     const FastGrid grid(area, options_.cell_size);
-    skip_cells.resize(static_cast<size_t>(grid.rows * grid.cols));
-    const auto to_mask = [scale](int v, int limit) { return std::min(static_cast<int>(std::lround(v * scale)), limit); };
+    skip_cells.resize(static_cast<size_t>(grid.size()));
     for (int row = 0; row < grid.rows; ++row) {
       for (int col = 0; col < grid.cols; ++col) {
         const cv::Rect cell = grid.Cell(row, col);
         // Every pixel of the cell looks the mask up inside this box.
-        const int x0 = to_mask(cell.x, exclusion_mask.cols - 1);
-        const int x1 = to_mask(cell.x + cell.width - 1, exclusion_mask.cols - 1) + 1;
-        const int y0 = to_mask(cell.y, exclusion_mask.rows - 1);
-        const int y1 = to_mask(cell.y + cell.height - 1, exclusion_mask.rows - 1) + 1;
+        const int x0 = mask_x(cell.x), x1 = mask_x(cell.x + cell.width - 1) + 1;
+        const int y0 = mask_y(cell.y), y1 = mask_y(cell.y + cell.height - 1) + 1;
         const int excluded = excluded_integral_.at<int>(y1, x1) - excluded_integral_.at<int>(y0, x1) -
                              excluded_integral_.at<int>(y1, x0) + excluded_integral_.at<int>(y0, x0);
-        skip_cells[static_cast<size_t>(row * grid.cols + col)] = excluded == 255 * (x1 - x0) * (y1 - y0);
+        skip_cells[static_cast<size_t>(grid.Index(row, col))] = excluded == 255 * (x1 - x0) * (y1 - y0);
       }
     }
   }
   DetectGridFast(image, area, fast, fast_scratch_, corners, skip_cells);
 
   if (!exclusion_mask.empty()) {
-    std::erase_if(corners, [&](const FastCorner& c) {
-      const int mx = std::min(static_cast<int>(std::lround(c.x * scale)), exclusion_mask.cols - 1);
-      const int my = std::min(static_cast<int>(std::lround(c.y * scale)), exclusion_mask.rows - 1);
-      return exclusion_mask.at<uchar>(my, mx) != 0;
-    });
+    std::erase_if(corners, [&](const FastCorner& c) { return exclusion_mask.at<uchar>(mask_y(c.y), mask_x(c.x)) != 0; });
   }
   DistributeQuadtree(area, level_targets_[l], corners);
 }
