@@ -164,6 +164,7 @@ void Visit(dynamic::GeometryOptions& o, V& v) {
   v.Value("depth_threshold_m", o.multiview.depth_threshold_m, {"m", "depth difference at 0 m that means moving"});
   v.Value("depth_threshold_per_m2", o.multiview.depth_threshold_per_m2, {"1/m", "... plus this times depth^2"});
   v.Value("depth_patch_radius_px", o.multiview.depth_patch_radius_px, {"px", "depth read as the patch's nearest"});
+  v.Value("agreement_radius_px", o.multiview.agreement_radius_px, {"px", "static if any depth this near agrees"});
   v.Value("min_depth_m", o.multiview.min_depth_m, {"m", "nearer depth is not tested"});
   v.Value("max_depth_m", o.multiview.max_depth_m, {"m", "farther depth is not tested"});
   v.End();

@@ -18,6 +18,8 @@ void MultiViewOptions::Check() const {
   DLSLAM_CHECK(depth_threshold_per_m2 >= 0 && depth_threshold_per_m2 <= 1,
                "MultiViewOptions::depth_threshold_per_m2 {} outside [0, 1]",
                depth_threshold_per_m2);
+  DLSLAM_CHECK(agreement_radius_px >= 0 && agreement_radius_px <= 20,
+               "MultiViewOptions::agreement_radius_px {} outside [0, 20]", agreement_radius_px);
   DLSLAM_CHECK(depth_patch_radius_px >= 0 && depth_patch_radius_px <= 20,
                "MultiViewOptions::depth_patch_radius_px {} outside [0, 20]",
                depth_patch_radius_px);
@@ -122,6 +124,34 @@ float NearestValidDepth(const cv::Mat& depth, const Eigen::Vector2f& pixel, int 
   return 0.0f;
 }
 
+namespace {
+
+// Is the projected depth `z` measured within options.agreement_radius_px of
+// `pixel`? Near a depth edge a static point projected a pixel or two off
+// (pose error, the sensor's colour-depth registration, parallax at the
+// silhouette) reads the other side of the edge; its own surface is next to it.
+bool AgreeingDepthNearby(const cv::Mat& depth, const Eigen::Vector2f& pixel, double z, double threshold,
+                         const MultiViewOptions& options, cv::Point* where) {
+  const int r = options.agreement_radius_px;
+  if (r <= 0) return false;
+  const int u0 = static_cast<int>(std::lround(pixel.x()));
+  const int v0 = static_cast<int>(std::lround(pixel.y()));
+  for (int v = std::max(0, v0 - r); v <= std::min(depth.rows - 1, v0 + r); ++v) {
+    const float* row = depth.ptr<float>(v);
+    for (int u = std::max(0, u0 - r); u <= std::min(depth.cols - 1, u0 + r); ++u) {
+      const float d = row[u];
+      if (!(d >= options.min_depth_m && d <= options.max_depth_m)) continue;  // NaN fails too
+      if (std::abs(z - d) <= threshold) {
+        if (where != nullptr) *where = cv::Point(u, v);
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 PointLabel ClassifyPoint(const ProjectedPoint& point, const cv::Mat& depth,
                          const MultiViewOptions& options, cv::Point* depth_pixel) {
   const double z = point.projected_depth;
@@ -134,9 +164,9 @@ PointLabel ClassifyPoint(const ProjectedPoint& point, const cv::Mat& depth,
   if (measured <= 0.0f) return PointLabel::kUnknown;
   const double difference = z - measured;  // > 0: something in front
   const double threshold = options.DepthThreshold(z);
-  if (difference > threshold) return PointLabel::kDynamic;
-  if (difference < -threshold) return PointLabel::kVanished;
-  return PointLabel::kStatic;
+  if (std::abs(difference) <= threshold) return PointLabel::kStatic;
+  if (AgreeingDepthNearby(depth, point.pixel, z, threshold, options, depth_pixel)) return PointLabel::kStatic;
+  return difference > 0 ? PointLabel::kDynamic : PointLabel::kVanished;
 }
 
 }  // namespace dlslam::dynamic

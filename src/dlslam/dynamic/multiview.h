@@ -45,6 +45,13 @@ struct MultiViewOptions {
   // The current depth is the valid pixel nearest to the projection within
   // this Chebyshev radius [px]; none -> unknown.
   int depth_patch_radius_px = 2;
+  // A point whose depth disagrees is still static when a valid depth within
+  // this Chebyshev radius [px] agrees with it (0 = off): near a depth edge
+  // a static point projected a pixel or two off reads the other side of the
+  // edge (pose error, colour-depth registration, parallax at silhouettes),
+  // and on the real Bonn frames such points seeded regions over whole
+  // static chairs, desks and shelves.
+  int agreement_radius_px = 3;
   // Depths outside [min_depth_m, max_depth_m] (projected or measured) are
   // treated as invalid [m]; beyond ~5 m the Kinect's depth is too noisy.
   double min_depth_m = 0.1;

@@ -147,6 +147,32 @@ TEST(ClassifyPoint, HoleIsUnknownNearbyDepthIsUsed) {
   EXPECT_EQ(ClassifyPoint(p, depth, {}), PointLabel::kUnknown);
 }
 
+TEST(ClassifyPoint, ItsOwnSurfaceNextToADepthEdgeIsStatic) {
+  // The point projects onto the near side of a depth edge (a chair's rim
+  // 1 m in front of the wall it lies on); its own wall is 3 px to the right.
+  const TwoViews views;
+  const ProjectedPoint p = views.Projected();
+  const int u = static_cast<int>(std::lround(p.pixel.x()));
+  cv::Mat depth = ConstantDepth(views.camera, static_cast<float>(p.projected_depth) - 1.0f);
+  depth.colRange(u + 3, depth.cols).setTo(static_cast<float>(p.projected_depth));
+  MultiViewOptions off;
+  off.agreement_radius_px = 0;
+  EXPECT_EQ(ClassifyPoint(p, depth, off), PointLabel::kDynamic);
+  MultiViewOptions on;
+  on.agreement_radius_px = 3;
+  cv::Point where;
+  EXPECT_EQ(ClassifyPoint(p, depth, on, &where), PointLabel::kStatic);
+  EXPECT_EQ(where.x, u + 3);
+  // Beyond the radius the occluder wins: a person standing in front.
+  on.agreement_radius_px = 2;
+  EXPECT_EQ(ClassifyPoint(p, depth, on), PointLabel::kDynamic);
+  // The same for a point whose surface has gone (far side of the edge).
+  depth.colRange(0, u + 3).setTo(static_cast<float>(p.projected_depth) + 1.0f);
+  EXPECT_EQ(ClassifyPoint(p, depth, off), PointLabel::kVanished);
+  on.agreement_radius_px = 3;
+  EXPECT_EQ(ClassifyPoint(p, depth, on), PointLabel::kStatic);
+}
+
 TEST(NearestValidDepth, PrefersTheNearestPixel) {
   cv::Mat depth(20, 20, CV_32FC1, cv::Scalar(0.0f));
   depth.at<float>(10 + 2, 10 + 2) = 3.0f;  // distance sqrt(8)
@@ -191,6 +217,8 @@ TEST(MultiViewOptions, CheckRejectsBadValues) {
   EXPECT_THROW(bad([](auto& o) { o.depth_threshold_m = -0.1; }).Check(), Error);
   EXPECT_THROW(bad([](auto& o) { o.depth_threshold_per_m2 = -1; }).Check(), Error);
   EXPECT_THROW(bad([](auto& o) { o.depth_patch_radius_px = -1; }).Check(), Error);
+  EXPECT_THROW(bad([](auto& o) { o.agreement_radius_px = -1; }).Check(), Error);
+  EXPECT_THROW(bad([](auto& o) { o.agreement_radius_px = 21; }).Check(), Error);
   EXPECT_THROW(bad([](auto& o) { o.min_depth_m = 7; }).Check(), Error);
   try {
     bad([](auto& o) { o.max_view_angle_deg = 200; }).Check();
