@@ -99,21 +99,22 @@ TEST(RealCrowdTest, AsynchronousMasksKeepFullModeAccurate) {
   EXPECT_GE(r.at("frames_posed").get<int>(), 290) << run.log;
   EXPECT_LT(AteRmse(r), 0.1) << run.log;
   EXPECT_GT(r.at("keyframes_held_for_masks").at("held").get<int>(), 0);
-  EXPECT_GT(r.at("dynamic").at("geometry_overruled").get<int>(), 0);
   EXPECT_GT(r.at("timing_ms").at("semantic_age_frames").at("count").get<int>(), 100);  // most frames carried
 }
 
-// Geometry alone on real people: still far from full mode (docs/real-data.md
-// says why), but it must not fall back towards the 0.32 m it had before the
-// re-extraction, the inverted-check resolution and static-only keyframes
-// (0.11 m now; --sequential runs are reproducible bit for bit).
+// Geometry alone on real people (docs/real-data.md): it must not fall back
+// towards the 0.32 m it had before the re-extraction, the inverted-check
+// resolution, static-only keyframes (0.11 m) and the agreement radius at
+// depth edges (0.041 m now; --sequential runs are reproducible bit for bit,
+// but small changes move it chaotically: agreement radius 1, 2, 5 px gave
+// 0.13, 0.10, 0.21 m; the bound catches the old failure, not that spread).
 TEST(RealCrowdTest, GeometryModeDoesNotRegress) {
   DLSLAM_REQUIRE_SHARED_DATA(sequence, kBonnCrowd);
   const Outcome run = RunOn(sequence, "geometry");
   ASSERT_TRUE(run.report.contains("ate")) << run.log;
   RecordProperty("ate_mm", static_cast<int>(AteRmse(run.report) * 1000));
   EXPECT_EQ(run.report.at("frames_posed").get<int>(), 300);
-  EXPECT_LT(AteRmse(run.report), 0.18) << run.log;
+  EXPECT_LT(AteRmse(run.report), 0.10) << run.log;
   EXPECT_GT(run.report.at("dynamic").at("inverted_checks_resolved").get<int>(), 0);
 }
 

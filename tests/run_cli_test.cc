@@ -362,7 +362,9 @@ TEST_F(RunCliTest, FolderPriorEqualsTheGroundTruthPrior) {
             0);
   const nlohmann::json gt = Report("gt.json").at("dynamic");
   const nlohmann::json dir = Report("dir.json").at("dynamic");
-  EXPECT_GT(gt.at("keypoints_removed").get<int>(), 0);
+  // The prior's pixels are left out of the extraction: measured as pixels.
+  EXPECT_GT(gt.at("image_share_removed").get<double>(), 0.01);
+  EXPECT_EQ(gt.at("image_share_removed"), dir.at("image_share_removed"));
   EXPECT_EQ(gt.at("keypoints_removed"), dir.at("keypoints_removed"));
   EXPECT_EQ(gt.at("true_positives"), dir.at("true_positives"));
   EXPECT_EQ(gt.at("keypoints_tested"), 0);  // no geometry in mode semantic

@@ -40,10 +40,10 @@ dynamic::FusionPolicy ParseFusion(std::string name) {
 void LogDynamicSummary(const RunStats& stats) {
   const DynamicStats& d = stats.dynamic;
   if (d.mode != DynamicMode::kOrb) {
-    spdlog::info("dynamic (mode {}, search {}): {} points tested, {} dynamic, {} keypoints removed, {} map points "
-                 "culled, {} moving movable-class segments dropped",
+    spdlog::info("dynamic (mode {}, search {}): {} points tested, {} dynamic, {} keypoints removed, {:.1f} % of the image "
+                 "removed, {} map points culled, {} moving movable-class segments dropped",
                  ToString(d.mode), dynamic::ToString(d.search), d.keypoints_tested, d.keypoints_dynamic,
-                 d.keypoints_removed, d.map_points_culled, d.movable_segments_dropped);
+                 d.keypoints_removed, 100.0 * d.image_share_removed().value_or(0.0), d.map_points_culled, d.movable_segments_dropped);
   }
   if (d.mode != DynamicMode::kOrb && d.frames_with_truth > 0) {
     const auto show = [](const std::optional<double>& v) { return v ? fmt::format("{:.3f}", *v) : "-"; };

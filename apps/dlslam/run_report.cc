@@ -28,6 +28,7 @@ nlohmann::ordered_json DynamicReport(const RunStats& stats) {
   j["keypoints_tested"] = d.keypoints_tested;
   j["keypoints_dynamic"] = d.keypoints_dynamic;
   j["keypoints_removed"] = d.keypoints_removed;
+  j["image_share_removed"] = OrNull(d.image_share_removed());
   j["frames_with_geometry"] = d.frames_with_geometry;
   j["map_points_culled"] = d.map_points_culled;
   j["movable_segments_dropped"] = d.movable_segments_dropped;
@@ -123,6 +124,7 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
   j["frames_coasted"] = stats.frames_coasted;
   j["frames_lost"] = stats.frames_lost;
   j["pose_sources"] = PoseSourcesReport(stats);
+  j["frames_extracted_outside_prior"] = stats.frames_extracted_outside_prior;
   j["frames_reextracted"] = stats.frames_reextracted;
   j["maps_started"] = stats.maps_started;
   j["maps_merged"] = stats.maps_merged;

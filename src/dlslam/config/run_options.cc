@@ -246,7 +246,7 @@ void Visit(SemanticThreadOptions& o, V& v) {
   v.Value("wait_for_masks", o.wait_for_masks, {"", "false: asynchronous masks (experimental)"});
   v.Value("carry_grow_px", o.carry_grow_px, {"px/frame", "asynchronous: growth of a carried mask per frame of age"});
   v.Value("max_carry_grow_px", o.max_carry_grow_px, {"px", "asynchronous: largest growth"});
-  v.Value("wait_when_removed_share", o.wait_when_removed_share, {"", "asynchronous: wait after a frame that lost this share"});
+  v.Value("wait_when_removed_share", o.wait_when_removed_share, {"", "asynchronous: wait after a frame that lost this share of the image"});
   v.Value("keyframes_wait_for_own_masks", o.keyframes_wait_for_own_masks,
           {"", "asynchronous: a keyframe enters the map only after its own masks"});
   v.Value("keyframe_mask_max_wait_frames", o.keyframe_mask_max_wait_frames,
@@ -315,6 +315,8 @@ void VisitOptions(RunOptions& options, OptionVisitor& v) {
   Section(v, "orb", "ORB extraction", s.orb);
   Section(v, "static_orb", "ORB re-extraction outside the removed regions", s.static_orb);
   v.Value("reextract_removed_share", s.reextract_removed_share, {"", "re-extract when this share of keypoints was removed"});
+  v.Value("extract_outside_prior", s.extract_outside_prior, {"", "one ORB extraction, outside the network's removal"});
+  v.Value("static_orb_removed_share", s.static_orb_removed_share, {"", "... with static_orb when it removes this share of the image"});
   Section(v, "tracker", "frame-to-map tracking", s.tracker);
   Section(v, "mapping", "local mapping", s.mapping);
   Section(v, "dynamic", "moving objects: modes, geometry, fusion", s.dynamic);

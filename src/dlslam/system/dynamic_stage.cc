@@ -19,6 +19,11 @@ std::optional<double> DynamicStats::recall() const {
   return static_cast<double>(true_positives) / static_cast<double>(moving);
 }
 
+std::optional<double> DynamicStats::image_share_removed() const {
+  if (pixels_total == 0) return std::nullopt;
+  return static_cast<double>(pixels_removed) / static_cast<double>(pixels_total);
+}
+
 dynamic::ReferenceView MakeReferenceView(const KeyFrameSnapshot& keyframe) {
   DLSLAM_CHECK(keyframe.frame != nullptr);
   const Frame& frame = *keyframe.frame;
@@ -50,60 +55,22 @@ DynamicStage::DynamicStage(const DynamicOptions& options, const CameraIntrinsics
   stats_.fusion = options_.fusion.policy;
 }
 
-DynamicRemoval DynamicStage::Process(const Frame& frame, const cv::Mat& depth, const DynamicInputs& inputs) {
-  stats_.keypoints_total += static_cast<std::int64_t>(frame.size());
-  DynamicRemoval removal;
-  if (options_.mode != DynamicMode::kOrb) {
-    const dynamic::SemanticMasks prior =
-        UsesSemanticPrior(options_.mode) ? SemanticPrior(inputs) : dynamic::SemanticMasks{};
-    dynamic::GeometryResult geometry;  // empty mask: the check did not run
-    if (UsesGeometry(options_.mode) && !depth.empty()) {
-      // The first pose estimate must not lean on what the network already
-      // knows to move: it sees the frame without the prior's keypoints
-      // (movable objects are mostly still: they stay in).
-      Stopwatch watch;
-      const bool has_prior = !prior.dynamic.empty();
-      geometry = DetectGeometrically(has_prior ? frame.WithoutMasked(prior.dynamic) : frame, depth,
-                                     /*estimate_knows_movers=*/has_prior);
-      timings_->Add("geometry", watch.ElapsedMs());
-    }
-    dynamic::FusionOptions fusion = options_.fusion;
-    if (options_.mode == DynamicMode::kSemantic) fusion.policy = dynamic::FusionPolicy::kSemanticOnly;
-    if (options_.mode == DynamicMode::kGeometry) fusion.policy = dynamic::FusionPolicy::kGeometryOnly;
-    int movables_dropped = 0;
-    removal.mask = dynamic::FuseDynamicMasks(prior, geometry, fusion, &movables_dropped);
-    // An overruled geometry dropped no movable segment either.
-    const bool overruled = options_.mode == DynamicMode::kFull && !geometry.dynamic_mask.empty() &&
-                           OverruleFailedGeometry(frame, prior, fusion, &removal.mask);
-    if (!overruled) stats_.movable_segments_dropped += movables_dropped;
-  }
-  removal.keypoints = removal.mask.empty() ? std::vector<bool>(frame.size(), false) : frame.OnMask(removal.mask);
-  removal.count = static_cast<std::size_t>(std::count(removal.keypoints.begin(), removal.keypoints.end(), true));
-  stats_.keypoints_removed += static_cast<std::int64_t>(removal.count);
-  if (!inputs.moving_truth.empty()) CountAgainstTruth(frame, removal.keypoints, inputs.moving_truth);
-  return removal;
+double DynamicPrior::removed_share() const {
+  return removal.empty() ? 0.0 : cv::countNonZero(removal) / static_cast<double>(removal.total());
 }
 
-bool DynamicStage::OverruleFailedGeometry(const Frame& frame, const dynamic::SemanticMasks& prior,
-                                          const dynamic::FusionOptions& fusion, cv::Mat* fused) {
-  if (prior.dynamic.empty() || options_.max_geometry_share_of_prior_static >= 1 || frame.size() == 0) return false;
-  const auto static_left = [&frame](const cv::Mat& mask) {
-    const std::vector<bool> on = frame.OnMask(mask);
-    return static_cast<double>(std::count(on.begin(), on.end(), false));
-  };
-  cv::Mat prior_only = dynamic::FuseDynamicMasks({prior.dynamic, {}}, {}, fusion);
-  const double left_by_prior = static_left(prior_only);
-  const double taken_by_geometry = left_by_prior - static_left(*fused);
-  if (taken_by_geometry <= options_.max_geometry_share_of_prior_static * left_by_prior) return false;
-  *fused = std::move(prior_only);
-  ++stats_.geometry_overruled;
-  return true;
+dynamic::FusionOptions DynamicStage::Fusion() const {
+  dynamic::FusionOptions fusion = options_.fusion;
+  if (options_.mode == DynamicMode::kSemantic) fusion.policy = dynamic::FusionPolicy::kSemanticOnly;
+  if (options_.mode == DynamicMode::kGeometry) fusion.policy = dynamic::FusionPolicy::kGeometryOnly;
+  return fusion;
 }
 
-dynamic::SemanticMasks DynamicStage::SemanticPrior(const DynamicInputs& inputs) {
-  if (!inputs.semantic_prior) return {};
+DynamicPrior DynamicStage::TakePrior(const DynamicInputs& inputs) {
+  DynamicPrior prior;
+  if (!UsesSemanticPrior(options_.mode) || !inputs.semantic_prior) return prior;
   Stopwatch watch;
-  dynamic::SemanticMasks prior = inputs.semantic_prior();
+  prior.masks = inputs.semantic_prior();
   timings_->Add("semantic_wait", watch.ElapsedMs());
   const auto check = [this](const cv::Mat& mask, const char* what) {
     if (mask.empty()) return;
@@ -111,9 +78,71 @@ dynamic::SemanticMasks DynamicStage::SemanticPrior(const DynamicInputs& inputs) 
                  "the {} must be 8-bit single-channel {}x{}, got type {} {}x{}", what, camera_.width, camera_.height,
                  mask.type(), mask.cols, mask.rows);
   };
-  check(prior.dynamic, "semantic prior");
-  check(prior.movable, "movable-class mask");
+  check(prior.masks.dynamic, "semantic prior");
+  check(prior.masks.movable, "movable-class mask");
+  if (prior.masks.dynamic.empty() || cv::countNonZero(prior.masks.dynamic) == 0) return prior;
+  const dynamic::FusionOptions fusion = Fusion();
+  prior.removal = dynamic::FuseDynamicMasks({prior.masks.dynamic, {}}, {}, fusion);
+  prior.final =
+      fusion.policy == dynamic::FusionPolicy::kUnion || fusion.policy == dynamic::FusionPolicy::kSemanticOnly;
   return prior;
+}
+
+DynamicRemoval DynamicStage::Process(const Frame& frame, const cv::Mat& depth, const DynamicInputs& inputs) {
+  return Process(frame, depth, TakePrior(inputs), inputs.moving_truth);
+}
+
+DynamicRemoval DynamicStage::Process(const Frame& frame, const cv::Mat& depth, const DynamicPrior& prior,
+                                     const cv::Mat& moving_truth) {
+  stats_.keypoints_total += static_cast<std::int64_t>(frame.size());
+  DynamicRemoval removal;
+  if (options_.mode != DynamicMode::kOrb) {
+    dynamic::GeometryResult geometry;  // empty mask: the check did not run
+    if (UsesGeometry(options_.mode) && !depth.empty()) {
+      // The first pose estimate must not lean on what the network already
+      // knows to move: it sees the frame without the prior's keypoints
+      // (movable objects are mostly still: they stay in).
+      Stopwatch watch;
+      const bool has_prior = !prior.masks.dynamic.empty();
+      geometry = DetectGeometrically(has_prior ? frame.WithoutMasked(prior.masks.dynamic) : frame, depth,
+                                     /*estimate_knows_movers=*/has_prior);
+      timings_->Add("geometry", watch.ElapsedMs());
+    }
+    int movables_dropped = 0;
+    removal.mask = dynamic::FuseDynamicMasks(prior.masks, geometry, Fusion(), &movables_dropped);
+    // An overruled geometry dropped no movable segment either.
+    const bool overruled = options_.mode == DynamicMode::kFull && !geometry.dynamic_mask.empty() &&
+                           OverruleFailedGeometry(frame, prior, &removal.mask);
+    if (!overruled) stats_.movable_segments_dropped += movables_dropped;
+  }
+  removal.keypoints = removal.mask.empty() ? std::vector<bool>(frame.size(), false) : frame.OnMask(removal.mask);
+  removal.count = static_cast<std::size_t>(std::count(removal.keypoints.begin(), removal.keypoints.end(), true));
+  stats_.keypoints_removed += static_cast<std::int64_t>(removal.count);
+  stats_.pixels_removed += removal.mask.empty() ? 0 : cv::countNonZero(removal.mask);
+  stats_.pixels_total += static_cast<std::int64_t>(removal.mask.empty() ? depth.total() : removal.mask.total());
+  if (!moving_truth.empty()) CountAgainstTruth(frame, removal.keypoints, moving_truth);
+  return removal;
+}
+
+bool GeometryTakesTooMuch(const Frame& frame, const cv::Mat& prior_removal, const cv::Mat& fused, double max_share) {
+  if (frame.size() == 0 || max_share >= 1) return false;
+  const auto static_left = [&frame](const cv::Mat& mask) {
+    if (mask.empty()) return static_cast<double>(frame.size());
+    const std::vector<bool> on = frame.OnMask(mask);
+    return static_cast<double>(std::count(on.begin(), on.end(), false));
+  };
+  const double left_by_prior = static_left(prior_removal);
+  return left_by_prior - static_left(fused) > max_share * left_by_prior;
+}
+
+bool DynamicStage::OverruleFailedGeometry(const Frame& frame, const DynamicPrior& prior, cv::Mat* fused) {
+  if (prior.masks.dynamic.empty() ||
+      !GeometryTakesTooMuch(frame, prior.removal, *fused, options_.max_geometry_share_of_prior_static)) {
+    return false;
+  }
+  *fused = prior.removal.empty() ? cv::Mat::zeros(fused->size(), CV_8UC1) : prior.removal.clone();
+  ++stats_.geometry_overruled;
+  return true;
 }
 
 dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, const cv::Mat& depth,

@@ -25,8 +25,9 @@ namespace dlslam {
 struct DynamicInputs {
   // The segmentation of the frame (dynamic::SemanticMasks: a-priori dynamic
   // classes such as people, and movable ones such as chairs; CV_8UC1 at the
-  // colour image's size), deferred: called once per frame, after ORB
-  // extraction, only in modes semantic and full. It may block until a
+  // colour image's size), deferred: called once per frame, by
+  // DynamicStage::TakePrior (before ORB extraction, which then leaves the
+  // removed regions out), only in modes semantic and full. It may block until a
   // segmentation thread has the masks (the wait is timed as stage
   // "semantic_wait"). Empty function or empty masks: no prior for this frame.
   std::function<dynamic::SemanticMasks()> semantic_prior;
@@ -44,6 +45,10 @@ struct DynamicStats {
   std::int64_t keypoints_tested = 0;   // projected reference points tested by geometry
   std::int64_t keypoints_dynamic = 0;  // of those, found moving
   std::int64_t keypoints_removed = 0;  // frame keypoints ignored (prior, geometry or both)
+  // Pixels in the removal masks and in the frames: what was removed even
+  // where the extractor left the prior's pixels out (no keypoint to count).
+  std::int64_t pixels_removed = 0;
+  std::int64_t pixels_total = 0;
   std::int64_t frames_with_geometry = 0;  // frames the geometric check ran on
   std::int64_t map_points_culled = 0;     // vanished map points removed from the map
   std::int64_t movable_segments_dropped = 0;  // movable-class segments geometry saw move, dropped whole
@@ -64,6 +69,30 @@ struct DynamicStats {
   // nullopt without ground truth, or when nothing was removed / nothing moved.
   std::optional<double> precision() const;
   std::optional<double> recall() const;
+  // pixels_removed / pixels_total; nullopt before any frame.
+  std::optional<double> image_share_removed() const;
+};
+
+// Does `fused` (prior and geometry) take more than `max_share` of the frame's
+// keypoints that `prior_removal` leaves (empty: no pixel)? Then mode full
+// takes geometry's check to have failed (DynamicOptions::max_geometry_share_of_prior_static).
+bool GeometryTakesTooMuch(const Frame& frame, const cv::Mat& prior_removal, const cv::Mat& fused, double max_share);
+
+// A frame's semantic prior and what it removes on its own, known before the
+// frame's ORB features are extracted.
+struct DynamicPrior {
+  dynamic::SemanticMasks masks;  // empty: no prior for this frame
+  // The prior fused alone (dilated as the fused mask is), CV_8UC1, 255 =
+  // removed; empty when it removes no pixel.
+  cv::Mat removal;
+  // Nothing later gives back a keypoint inside `removal` (fusion policies
+  // union and semantic: the fused mask contains it whatever geometry finds),
+  // so the extractor may leave those pixels out and spend its budget on the
+  // rest. False under geometry_confirms, which keeps segments geometry shows
+  // still.
+  bool final = false;
+
+  double removed_share() const;  // of the image's pixels, in `removal`
 };
 
 // What the dynamic stage removes from a frame.
@@ -83,26 +112,34 @@ class DynamicStage {
   DynamicStage(const DynamicOptions& options, const CameraIntrinsics& camera, Map* map, const Tracker* tracker,
                StageTimings* timings);
 
-  // What to remove from `frame`: tracking and mapping get the frame without
-  // those keypoints (SlamSystem). `depth`: the frame's CV_32FC1 metres
-  // (empty: geometry is skipped). Throws dlslam::Error for a prior of the
-  // wrong type or size.
+  // Waits for the frame's semantic prior (modes semantic and full; timed as
+  // "semantic_wait") and fuses it alone. Throws dlslam::Error for a prior of
+  // the wrong type or size.
+  DynamicPrior TakePrior(const DynamicInputs& inputs);
+
+  // What to remove from `frame`, whose prior `prior` is: tracking and
+  // mapping get the frame without those keypoints (SlamSystem); the mask
+  // contains prior.removal when prior.final. `depth`: the frame's CV_32FC1
+  // metres (empty: geometry is skipped). `moving_truth`: as
+  // DynamicInputs::moving_truth.
+  DynamicRemoval Process(const Frame& frame, const cv::Mat& depth, const DynamicPrior& prior,
+                         const cv::Mat& moving_truth = {});
+  // TakePrior and Process in one, for a frame extracted without its prior.
   DynamicRemoval Process(const Frame& frame, const cv::Mat& depth, const DynamicInputs& inputs);
 
   const DynamicStats& stats() const { return stats_; }
 
  private:
-  dynamic::SemanticMasks SemanticPrior(const DynamicInputs& inputs);
+  // The fusion policy of the mode.
+  dynamic::FusionOptions Fusion() const;
   // The multi-view check with the tracker's first pose estimate; a result
   // with an empty mask when it cannot run (not tracking, no keyframe).
   // `estimate_knows_movers`: the estimate already ignored a semantic prior's
   // keypoints, so the labelling is not checked for inversion.
   dynamic::GeometryResult DetectGeometrically(const Frame& frame, const cv::Mat& depth, bool estimate_knows_movers);
   // Mode full: replaces `fused` (prior and geometry) by the prior's removal
-  // alone when geometry took too much of what the prior left
-  // (DynamicOptions::max_geometry_share_of_prior_static); true if it did.
-  bool OverruleFailedGeometry(const Frame& frame, const dynamic::SemanticMasks& prior,
-                              const dynamic::FusionOptions& fusion, cv::Mat* fused);
+  // alone when GeometryTakesTooMuch; true if it did.
+  bool OverruleFailedGeometry(const Frame& frame, const DynamicPrior& prior, cv::Mat* fused);
   void CountAgainstTruth(const Frame& frame, const std::vector<bool>& removed, const cv::Mat& truth);
 
   DynamicOptions options_;

@@ -116,10 +116,68 @@ TEST_F(DynamicStageTest, OrbModeRemovesNothingAndNeverAsksForThePrior) {
 TEST_F(DynamicStageTest, GeometryWaitsForTracking) {
   DynamicStage stage = MakeStage(DynamicMode::kGeometry);
   auto frame = GridFrame();
-  stage.Process(*frame, cv::Mat(kCamera.height, kCamera.width, CV_32FC1, cv::Scalar(2.0)), {});
+  stage.Process(*frame, cv::Mat(kCamera.height, kCamera.width, CV_32FC1, cv::Scalar(2.0)), DynamicInputs{});
   EXPECT_EQ(stage.stats().frames_with_geometry, 0);  // the tracker has no pose yet
   EXPECT_EQ(stage.stats().keypoints_removed, 0);
   EXPECT_FALSE(stage.stats().recall().has_value());  // no ground truth
+}
+
+TEST_F(DynamicStageTest, ThePriorAloneIsFusedBeforeExtractionAndFinalUnderUnion) {
+  DynamicInputs inputs;
+  inputs.semantic_prior = [] { return dynamic::SemanticMasks{Rectangle(100, 100, 300, 200)}; };
+  DynamicStage full = MakeStage(DynamicMode::kFull, /*dilation_px=*/5.0);
+  const DynamicPrior prior = full.TakePrior(inputs);
+  ASSERT_FALSE(prior.removal.empty());
+  EXPECT_TRUE(prior.final);  // union: the fused mask holds the prior whatever geometry says
+  // Dilated as the fused mask is: 5 px around the rectangle, not 6.
+  EXPECT_EQ(prior.removal.at<uchar>(150, 95), 255);
+  EXPECT_EQ(prior.removal.at<uchar>(150, 94), 0);
+  EXPECT_NEAR(prior.removed_share(), cv::countNonZero(prior.removal) / (640.0 * 480.0), 1e-12);
+  // Process with that prior removes what Process with the inputs removes.
+  auto frame = GridFrame();
+  const DynamicRemoval from_prior = full.Process(*frame, cv::Mat(), prior);
+  const DynamicRemoval from_inputs = full.Process(*frame, cv::Mat(), inputs);
+  EXPECT_EQ(cv::countNonZero(from_prior.mask != from_inputs.mask), 0);
+  EXPECT_EQ(cv::countNonZero(from_prior.mask != prior.removal), 0);  // no geometry without depth
+
+  DynamicStage semantic = MakeStage(DynamicMode::kSemantic);
+  EXPECT_TRUE(semantic.TakePrior(inputs).final);
+  DynamicOptions confirms;
+  confirms.mode = DynamicMode::kFull;
+  confirms.fusion.policy = dynamic::FusionPolicy::kGeometryConfirms;
+  DynamicStage confirming(confirms, kCamera, &map_, &tracker_, &timings_);
+  const DynamicPrior maybe = confirming.TakePrior(inputs);
+  EXPECT_FALSE(maybe.removal.empty());
+  EXPECT_FALSE(maybe.final);  // geometry may keep the segment: its keypoints must be extracted
+
+  // No prior, or one without a pixel: nothing to leave out.
+  inputs.semantic_prior = [] { return dynamic::SemanticMasks{Rectangle(0, 0, 0, 0)}; };
+  EXPECT_TRUE(full.TakePrior(inputs).removal.empty());
+  EXPECT_TRUE(full.TakePrior(DynamicInputs{}).removal.empty());
+  bool asked = false;
+  inputs.semantic_prior = [&asked] {
+    asked = true;
+    return dynamic::SemanticMasks{};
+  };
+  EXPECT_TRUE(MakeStage(DynamicMode::kGeometry).TakePrior(inputs).removal.empty());
+  EXPECT_FALSE(asked);  // geometry mode never waits for a network
+}
+
+TEST(GeometryTakesTooMuch, ComparesWithWhatThePriorLeft) {
+  auto frame = GridFrame();  // 20 x 15 grid keypoints
+  const cv::Mat prior = Rectangle(0, 0, 320, 480);  // the left half: 150 left
+  // Geometry adds 4 of the 10 right-hand columns (60 of 150), then 6 (90 of 150).
+  EXPECT_FALSE(GeometryTakesTooMuch(*frame, prior, Rectangle(0, 0, 448, 480), 0.5));
+  EXPECT_TRUE(GeometryTakesTooMuch(*frame, prior, Rectangle(0, 0, 512, 480), 0.5));
+  EXPECT_TRUE(GeometryTakesTooMuch(*frame, prior, Rectangle(0, 0, 448, 480), 0.35));
+  EXPECT_FALSE(GeometryTakesTooMuch(*frame, prior, Rectangle(0, 0, 640, 480), 1.0));  // 1: never
+  // No prior pixel: the share of all keypoints. Keypoints already left out
+  // of the extraction (none in the prior) count the same way.
+  EXPECT_TRUE(GeometryTakesTooMuch(*frame, cv::Mat(), Rectangle(0, 0, 352, 480), 0.5));  // 165 of 300
+  EXPECT_FALSE(GeometryTakesTooMuch(*frame, cv::Mat(), Rectangle(0, 0, 288, 480), 0.5));  // 135 of 300
+  const Frame outside = frame->WithoutMasked(prior);
+  EXPECT_FALSE(GeometryTakesTooMuch(outside, prior, Rectangle(0, 0, 448, 480), 0.5));
+  EXPECT_TRUE(GeometryTakesTooMuch(outside, prior, Rectangle(0, 0, 512, 480), 0.5));
 }
 
 TEST_F(DynamicStageTest, BadMasksAreErrors) {

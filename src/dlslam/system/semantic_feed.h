@@ -60,13 +60,17 @@ struct SemanticThreadOptions {
   int carry_grow_px = 8;       // [px / frame of age]
   int max_carry_grow_px = 24;  // [px]
   // Asynchronous only: a frame waits for its own masks after one whose
-  // dynamic stage removed at least this share of its keypoints, or while
+  // dynamic stage removed at least this share of the image, or while
   // tracking is not ok. In a crowd a carried mask is too stale (people walk
   // 10-20 px a frame) and the few static keypoints left are outnumbered by
   // the people's edges (Bonn crowd: ATE 0.022-0.14 m carrying always,
-  // 0.016-0.058 m with this at 0.75, 0.016-0.027 m at 0.6 where most
-  // frames wait). (0, 1]; 1 = only when everything was removed.
-  double wait_when_removed_share = 0.75;
+  // 0.016-0.058 m waiting after frames that lost 75 % of their keypoints,
+  // 0.016-0.027 m at 60 %, where most frames wait). 75 % of the keypoints
+  // were 42-62 % of the pixels on those frames (people hold more than their
+  // share of keypoints); the share is now taken in pixels, which does not
+  // depend on what the extractor found. (0, 1]; 1 = only when everything
+  // was removed.
+  double wait_when_removed_share = 0.55;
   // Asynchronous only: a keyframe made from a frame with carried masks is
   // held back from the map until that frame's own masks arrive (it is
   // segmented, unless it was already), and only its keypoints outside them

@@ -126,6 +126,8 @@ void SystemOptions::Check() const {
   semantic.Check();
   DLSLAM_CHECK(reextract_removed_share > 0 && reextract_removed_share <= 1,
                "SystemOptions::reextract_removed_share {} outside (0, 1]", reextract_removed_share);
+  DLSLAM_CHECK(static_orb_removed_share >= 0 && static_orb_removed_share <= 1,
+               "SystemOptions::static_orb_removed_share {} outside [0, 1]", static_orb_removed_share);
   DLSLAM_CHECK(merge_every_frames >= 1 && merge_every_frames <= 100000,
                "SystemOptions::merge_every_frames {} outside [1, 100000]", merge_every_frames);
   DLSLAM_CHECK(merge_agreement_m > 0 && merge_agreement_deg > 0,
@@ -190,18 +192,20 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     counts_.frames_segmented_ahead += masks.segmented_ahead;
     inputs.semantic_prior = masks.prior;
   }
+  const DynamicPrior prior = dynamic_.TakePrior(inputs);
   Stopwatch watch;
-  const features::OrbFeatures features = extractor_.Extract(colour);
+  const features::OrbFeatures features = ExtractOutside(colour, prior);
   timings_.Add("orb_extraction", watch.ElapsedMs());
   auto frame = std::make_shared<Frame>(
       Frame::Create(timestamp, features.keypoints, features.descriptors, depth, camera_, pyramid_));
-  const DynamicRemoval removal = dynamic_.Process(*frame, depth, inputs);
+  const DynamicRemoval removal = dynamic_.Process(*frame, depth, prior, inputs.moving_truth);
   last_view_.removed.clear();
   for (std::size_t i = 0; i < removal.keypoints.size(); ++i) {
     if (removal.keypoints[i]) last_view_.removed.push_back(features.keypoints[i].pt);
   }
   last_view_.removed_mask = removal.mask;
-  last_removed_share_ = frame->size() > 0 ? static_cast<double>(removal.count) / static_cast<double>(frame->size()) : 0.0;
+  last_removed_share_ =
+      removal.mask.empty() ? 0.0 : cv::countNonZero(removal.mask) / static_cast<double>(removal.mask.total());
   if (removal.count > 0) {
     // Tracking and mapping see only static keypoints: extracted again
     // outside the removed regions when many were removed, else the others.
@@ -288,6 +292,13 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   sources_.push_back({timestamp, source});
   timings_.Add("frame_total", total.ElapsedMs());
   return result;
+}
+
+features::OrbFeatures SlamSystem::ExtractOutside(const cv::Mat& colour, const DynamicPrior& prior) {
+  if (!options_.extract_outside_prior || !prior.final || prior.removal.empty()) return extractor_.Extract(colour);
+  ++counts_.frames_extracted_outside_prior;
+  const bool crowded = prior.removed_share() >= options_.static_orb_removed_share;
+  return (crowded ? static_extractor_ : extractor_).Extract(colour, prior.removal);
 }
 
 void SlamSystem::CheckColour(const cv::Mat& colour, double timestamp) const {

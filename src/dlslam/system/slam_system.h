@@ -32,11 +32,11 @@
 
 namespace dlslam {
 
-// ORB options for the re-extraction outside removed regions: what is left
-// in a crowd is mostly weakly textured (walls, desks), so FAST starts lower
-// (8 / 4 grey levels instead of 20 / 7; on the real Bonn crowd frames the
-// static re-extraction found 107-300 keypoints at 20 / 7 in the most
-// crowded frames).
+// ORB options for the extraction outside removed regions when they are
+// large: what is left in a crowd is mostly weakly textured (walls, desks), so
+// FAST starts lower (8 / 4 grey levels instead of 20 / 7; on the real Bonn
+// crowd frames the static re-extraction found 107-300 keypoints at 20 / 7 in
+// the most crowded frames).
 features::OrbOptions StaticOrbOptions();
 
 struct SystemOptions {
@@ -54,6 +54,18 @@ struct SystemOptions {
   // 1 = only when every keypoint was removed. Costs one more extraction on
   // such frames (~3 ms).
   double reextract_removed_share = 0.1;
+  // What the semantic prior removes whatever geometry finds (fusion union
+  // or semantic; DynamicPrior::final) is left out of the frame's one ORB
+  // extraction, which then spends its whole budget on the rest: the prior is
+  // waited for before extraction, and only what geometry adds can still call
+  // for a re-extraction. False: extract the whole frame, then re-extract
+  // (one more extraction, 3-5 ms, on nearly every frame of a crowd).
+  bool extract_outside_prior = true;
+  // The extraction outside the prior uses static_orb's FAST thresholds when
+  // the prior removes at least this share of the image, else orb's [0, 1]
+  // (keypoints gather on people: 5 % of the pixels hold about 10 % of the
+  // keypoints, reextract_removed_share's share).
+  double static_orb_removed_share = 0.05;
   // Run local mapping inline after each keyframe instead of in its thread.
   bool sequential = false;
   // Relocalize a lost camera against the map by bag of words (loads the
@@ -112,6 +124,7 @@ struct RunStats {
   int maps_merged = 0;      // of those, merged into an older map
   int frames_lost = 0;      // not tracked after initialisation, or unreadable
   int frames_waiting = 0;   // before initialisation
+  int frames_extracted_outside_prior = 0;  // ORB extraction left the prior's removal out (extract_outside_prior)
   int frames_reextracted = 0;  // ORB features extracted again outside the removed regions
   int relocalizations = 0;  // lost -> tracked again through relocalization
   int jumps_refused = 0;    // tracked poses refused as too far from the motion model (coasted instead)
@@ -264,6 +277,9 @@ class SlamSystem {
   std::optional<HeldKeyFrame> held_keyframe_;
   // Throws dlslam::Error for an empty colour image or one of another size than the camera's.
   void CheckColour(const cv::Mat& colour, double timestamp) const;
+  // The frame's ORB features, outside what the prior removes for good
+  // (SystemOptions::extract_outside_prior).
+  features::OrbFeatures ExtractOutside(const cv::Mat& colour, const DynamicPrior& prior);
   // Keyframes' images for the dense map (options.keep_keyframe_images).
   struct KeyFrameImages {
     double timestamp = 0.0;
@@ -280,7 +296,7 @@ class SlamSystem {
   TrackingState last_state_ = TrackingState::kNotInitialized;  // for the state log
   bool shut_down_ = false;
   FrameView last_view_;
-  double last_removed_share_ = 0.0;  // of the last frame's keypoints, removed as dynamic
+  double last_removed_share_ = 0.0;  // of the last frame's pixels, removed as dynamic
   int frames_in_new_map_ = 0;  // tracked frames since the current new map started
   std::optional<SE3d> pending_merge_;  // the last try's new_world_from_old_world, to be confirmed
 };
