@@ -370,6 +370,43 @@ TEST_F(RunCliTest, FolderPriorEqualsTheGroundTruthPrior) {
   EXPECT_EQ(gt.at("keypoints_tested"), 0);  // no geometry in mode semantic
 }
 
+// --removal-images: every k-th frame as the dynamic stage saw it, named like
+// its colour image; the network prior's region is tinted red. A folder with
+// files in it is refused (nothing overwritten). No live view unless asked.
+TEST_F(RunCliTest, RemovalImagesShowThePriorsRegion) {
+  const fs::path pictures = out_ / "removal";
+  const CliRun run = Cli(RunArgs(Walk(), "--mode full --semantic-masks gt --removal-images " + Quoted(pictures) +
+                                             " --removal-images-every 10 2>&1"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, Not(HasSubstr("live view")));
+  const io::RgbdSequence sequence = io::RgbdSequence::Open(Walk());
+  int with_people = 0;
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    const fs::path file = pictures / (sequence.frames()[i].rgb.path.stem().string() + ".jpg");
+    ASSERT_EQ(fs::exists(file), i % 10 == 0) << file;
+    if (i % 10 != 0) continue;
+    const cv::Mat picture = cv::imread(file.string(), cv::IMREAD_COLOR);
+    const io::RgbdFrame frame = sequence.LoadFrame(i);
+    ASSERT_EQ(picture.size(), frame.color.size());
+    cv::Mat person;
+    cv::compare(frame.mask & 0x7F, synth::kClassPerson, person, cv::CMP_EQ);
+    cv::erode(person, person, cv::Mat(), cv::Point(-1, -1), 3);  // clear of JPEG ringing at the outline
+    if (cv::countNonZero(person) < 500) continue;
+    ++with_people;
+    std::vector<cv::Mat> drawn, original;
+    cv::split(picture, drawn);
+    cv::split(frame.color, original);
+    // Red up, blue down inside the person: tinted towards (60, 60, 230) BGR.
+    EXPECT_GT(cv::mean(drawn[2], person)[0], cv::mean(original[2], person)[0] + 15) << file;
+    EXPECT_LT(cv::mean(drawn[0], person)[0], cv::mean(original[0], person)[0]) << file;
+  }
+  EXPECT_GT(with_people, 0);
+  const CliRun again = Cli(RunArgs(Walk(), "--mode full --semantic-masks gt --removal-images " + Quoted(pictures) + " 2>&1"));
+  EXPECT_NE(again.exit_code, 0);
+  EXPECT_THAT(again.output, HasSubstr("not empty"));
+  EXPECT_THAT(again.output, HasSubstr(pictures.string()));
+}
+
 // `dlslam bench`: every mode asked for, timed stage by stage, in bench.json.
 TEST_F(RunCliTest, BenchTimesEachModeAndWritesJson) {
   const CliRun run = Cli("bench --sequence " + Quoted(Walk()) + " --modes orb,geometry --sequential --out " +

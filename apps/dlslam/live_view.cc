@@ -15,6 +15,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "dlslam/util/check.h"
+#include "frame_view_image.h"
 #include "html_report.h"
 #include "run_report.h"
 
@@ -204,22 +205,7 @@ std::string LiveView::FrameJpeg() {
     colour = colour_;
     view = view_;
   }
-  cv::Mat image;
-  if (colour.empty()) {
-    image = cv::Mat(480, 640, CV_8UC3, cv::Scalar(40, 40, 40));
-  } else if (colour.type() == CV_8UC1) {
-    cv::cvtColor(colour, image, cv::COLOR_GRAY2BGR);
-  } else {
-    image = colour.clone();
-  }
-  if (!view.removed_mask.empty() && view.removed_mask.size() == image.size()) {
-    cv::Mat tint(image.size(), CV_8UC3, cv::Scalar(60, 60, 230));
-    cv::Mat blended;
-    cv::addWeighted(image, 0.6, tint, 0.4, 0.0, blended);
-    blended.copyTo(image, view.removed_mask);
-  }
-  for (const cv::Point2f& p : view.kept) cv::circle(image, p, 3, cv::Scalar(60, 200, 60), 1, cv::LINE_AA);
-  for (const cv::Point2f& p : view.removed) cv::circle(image, p, 3, cv::Scalar(40, 40, 230), 1, cv::LINE_AA);
+  const cv::Mat image = DrawFrameView(colour, view);
   std::vector<uchar> jpeg;
   cv::imencode(".jpg", image, jpeg, {cv::IMWRITE_JPEG_QUALITY, 80});
   return std::string(jpeg.begin(), jpeg.end());

@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "dlslam/config/config_file.h"
 #include "dense_output.h"
+#include "frame_view_image.h"
 #include "html_report.h"
 #include "live_view.h"
 #include "dlslam/io/file_util.h"
@@ -168,6 +169,8 @@ RunOutcome RunSequence(const RunArgs& args) {
     live = std::make_unique<LiveView>(args.view_port, title, ToString(options.dynamic.mode), &slam);
     spdlog::info("live view on http://127.0.0.1:{}/", live->port());
   }
+  std::optional<RemovalImageWriter> removal_images;
+  if (!args.removal_images.empty()) removal_images.emplace(args.removal_images, args.removal_images_every);
   int posed = 0;
   // Frames are read ahead in a thread of their own, as a camera delivers them.
   const Stopwatch loop_watch;
@@ -227,6 +230,9 @@ RunOutcome RunSequence(const RunArgs& args) {
       // Timings are summarised (sorted) only now and then.
       const RunStats stats = i % 15 == 0 ? slam.Stats() : RunStats();
       live->Publish(frame, f.color, slam.LastFrameView(), i % 15 == 0 ? &stats : nullptr);
+    }
+    if (removal_images) {
+      removal_images->Write(i, sequence.frames()[i].rgb.path.stem().string(), f.color, slam.LastFrameView());
     }
     if ((i + 1) % 100 == 0) spdlog::info("{}/{} frames", i + 1, n);
   }
@@ -343,6 +349,14 @@ void AddRunCommand(CLI::App& app) {
       ->check(WholeNumber(1, 65535));
   cmd->add_option("--view-linger", args->view_linger_s, "Keep the live view up this long after the run [s]")
       ->check(RealNumber(0, 86400));
+  cmd->add_option("--removal-images", args->removal_images,
+                  "Write each frame as the dynamic stage saw it into this new or empty folder (<colour image "
+                  "name>.jpg): the network's removal tinted red, geometry's blue, kept keypoints green, removed "
+                  "ones yellow");
+  cmd->add_option("--removal-images-every", args->removal_images_every,
+                  "With --removal-images: every k-th frame")
+      ->capture_default_str()
+      ->check(WholeNumber(1, 1000000));
   cmd->add_option("--html", args->html,
                   "The run as one self-contained web page: trajectory vs ground truth, error over time, the map "
                   "in 3-D, timings, options");
@@ -411,6 +425,9 @@ void AddRunCommand(CLI::App& app) {
       if (option->count() == 0) continue;
       for (const std::string& name : option->get_lnames()) args->given.insert("--" + name);
     }
+    // CLI11 sets an integer flag it was not given to 0 (a count): without
+    // this every run served a live view on a random port.
+    if (args->given.count("--view") == 0) args->view_port = -1;
     RunSequence(*args);
   });
 }

@@ -24,6 +24,8 @@ struct RunArgs {
   std::filesystem::path html;       // --html: the run as one web page
   int view_port = -1;               // --view[=PORT]: serve the run live; -1 = no
   double view_linger_s = 0.0;       // --view-linger: keep serving after the run [s]
+  std::filesystem::path removal_images;  // --removal-images: each frame as the dynamic stage saw it
+  int removal_images_every = 1;          // --removal-images-every: every k-th frame
   std::string mode = "orb";                // orb, semantic, geometry, full
   std::string geometry_search = "ant";     // exhaustive, ant
   std::string fusion = "union";            // union, geometry-confirms, semantic, geometry

@@ -204,6 +204,8 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     if (removal.keypoints[i]) last_view_.removed.push_back(features.keypoints[i].pt);
   }
   last_view_.removed_mask = removal.mask;
+  // The prior's part of what was removed (policy geometry removes none of it).
+  last_view_.prior_mask = prior.removal.empty() || removal.mask.empty() ? cv::Mat() : (prior.removal & removal.mask);
   last_removed_share_ =
       removal.mask.empty() ? 0.0 : cv::countNonZero(removal.mask) / static_cast<double>(removal.mask.total());
   if (removal.count > 0) {

@@ -201,12 +201,14 @@ class SlamSystem {
   Trajectory KeyFrameTrajectory() const;
   // The last frame as tracking saw it, for views: its detected keypoints
   // kept for tracking and those the dynamic stage removed (pixels of the
-  // colour image), and the removal mask (CV_8UC1, empty when nothing was
-  // removed). Tracking thread only.
+  // colour image), the removal mask (CV_8UC1, empty when nothing was
+  // removed) and the part of it the network's prior removed alone (the rest
+  // is geometry's; empty when none). Tracking thread only.
   struct FrameView {
     std::vector<cv::Point2f> kept;
     std::vector<cv::Point2f> removed;
     cv::Mat removed_mask;
+    cv::Mat prior_mask;
   };
   const FrameView& LastFrameView() const { return last_view_; }
   // Every map point's position (world) now, for views and reports (any thread).
