@@ -81,6 +81,8 @@ void Visit(RelocalizerOptions& o, V& v) {
 
 void Visit(TrackerOptions& o, V& v) {
   v.Value("min_init_points", o.min_init_points, {"keypoints", "with depth, to start the map from one frame"});
+  v.Value("min_init_points_spread", o.min_init_points_spread, {"keypoints", "... or this many, spread (0 = off)"});
+  v.Value("min_init_cells", o.min_init_cells, {"cells", "... over this many cells of a 4 x 4 grid"});
   v.Value("motion_search_radius", o.motion_search_radius, {"px", "projection search around the motion guess"});
   v.Value("local_search_radius", o.local_search_radius, {"px", "projection search of the local map"});
   v.Value("min_motion_matches", o.min_motion_matches, {"matches", "after the motion-model search"});

@@ -1,6 +1,7 @@
 #include "dlslam/tracking/tracker.h"
 
 #include <algorithm>
+#include <array>
 #include <numbers>
 
 #include "dlslam/tracking/matched_pose.h"
@@ -13,10 +14,19 @@ namespace {
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 // A keyframe needs this many tracked points (ORB-SLAM: more than 15).
 constexpr int kMinKeyFrameMatches = 16;
+// The start rule's grid (kInitGrid x kInitGrid cells) and the keypoints a
+// cell needs to count.
+constexpr int kInitGrid = 4;
+constexpr int kInitCellPoints = 5;
 }  // namespace
 
 void TrackerOptions::Check() const {
   DLSLAM_CHECK_GT(min_init_points, 0);
+  DLSLAM_CHECK(min_init_points_spread >= 0 && min_init_points_spread <= min_init_points,
+               "TrackerOptions::min_init_points_spread {} outside [0, min_init_points {}]", min_init_points_spread,
+               min_init_points);
+  DLSLAM_CHECK(min_init_cells >= 1 && min_init_cells <= kInitGrid * kInitGrid,
+               "TrackerOptions::min_init_cells {} outside [1, {}]", min_init_cells, kInitGrid * kInitGrid);
   DLSLAM_CHECK_GT(motion_search_radius, 0.0);
   DLSLAM_CHECK_GT(local_search_radius, 0.0);
   DLSLAM_CHECK_GE(min_motion_matches, 3);
@@ -223,10 +233,28 @@ void Tracker::MergedIntoOlderMap(const Relocalization& found) {
   RememberPose(found.cam_from_world, found.keyframe, map_->Generation());
 }
 
+bool CanStartMap(const Frame& frame, const TrackerOptions& options) {
+  std::array<int, kInitGrid * kInitGrid> cells{};
+  int with_depth = 0;
+  const CameraIntrinsics& camera = frame.camera();
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const FrameKeypoint& k = frame.keypoint(i);
+    if (!(k.depth > 0)) continue;
+    ++with_depth;
+    const int cx = std::clamp(static_cast<int>(k.raw_uv.x() * kInitGrid / camera.width), 0, kInitGrid - 1);
+    const int cy = std::clamp(static_cast<int>(k.raw_uv.y() * kInitGrid / camera.height), 0, kInitGrid - 1);
+    ++cells[static_cast<std::size_t>(cy * kInitGrid + cx)];
+  }
+  if (with_depth >= options.min_init_points) return true;
+  if (options.min_init_points_spread == 0 || with_depth < options.min_init_points_spread) return false;
+  const auto filled = std::count_if(cells.begin(), cells.end(), [](int n) { return n >= kInitCellPoints; });
+  return filled >= options.min_init_cells;
+}
+
 bool Tracker::StartMap(const std::shared_ptr<const Frame>& frame, const SE3d& pose, TrackingResult* result) {
+  if (!CanStartMap(*frame, options_)) return false;
   int with_depth = 0;
   for (std::size_t i = 0; i < frame->size(); ++i) with_depth += frame->keypoint(i).depth > 0;
-  if (with_depth < options_.min_init_points) return false;
   // The first keyframe takes every keypoint with depth (ORB-SLAM's RGB-D
   // initialisation); later ones only the close ones.
   reference_keyframe_ =

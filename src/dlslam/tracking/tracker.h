@@ -35,8 +35,16 @@
 namespace dlslam {
 
 struct TrackerOptions {
-  // Keypoints with depth needed to start the map from one frame.
+  // Keypoints with depth needed to start the map from one frame...
   int min_init_points = 500;
+  // ... or at least this many when they are spread over the view: in at
+  // least min_init_cells cells of a 4 x 4 grid, with 5 or more in each (0 =
+  // off). When people cover most of the first frames, what is left of the
+  // static scene may hold fewer than 500 keypoints for many frames, and
+  // tracking needs only min_local_map_inliers of them; spread, they fix
+  // the pose in every direction, bunched in one corner they do not.
+  int min_init_points_spread = 150;
+  int min_init_cells = 4;
   // Projection search around the constant-velocity guess [px at level 0].
   double motion_search_radius = 15.0;
   // Projection search for the local map [px at level 0] (ORB-SLAM: 4 px for
@@ -137,6 +145,11 @@ struct TrackingResult {
   // keyframe: the keyframe not made (new_keyframe stays false).
   std::optional<KeyFrameCandidate> held_keyframe;
 };
+
+// Is there enough static structure in `frame` to start a map on it
+// (TrackerOptions::min_init_points, or min_init_points_spread spread over
+// min_init_cells)?
+bool CanStartMap(const Frame& frame, const TrackerOptions& options);
 
 class Tracker {
  public:

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "dlslam/util/check.h"
 #include "tests/support/landmark_scene.h"
 
 namespace dlslam {
@@ -120,6 +121,48 @@ TEST(Tracker, WaitsForDepthThenInitializes) {
   EXPECT_EQ(tracker.Track(std::make_shared<Frame>(empty)).state, TrackingState::kNotInitialized);
   EXPECT_EQ(tracker.Track(frame).state, TrackingState::kOk);
   EXPECT_EQ(map.NumKeyFrames(), 1u);
+}
+
+// Keypoints on a regular grid in each region (count, x0, y0, x1, y1), at
+// 2 m depth (none without `depth`).
+struct Region {
+  int n;
+  float x0, y0, x1, y1;
+};
+Frame KeypointsIn(const std::vector<Region>& regions, bool depth = true) {
+  const CameraIntrinsics camera = CameraPreset("freiburg3");
+  std::vector<cv::KeyPoint> keypoints;
+  for (const Region& r : regions) {
+    const int side = static_cast<int>(std::ceil(std::sqrt(r.n)));
+    for (int i = 0; i < r.n; ++i) {
+      keypoints.emplace_back(cv::Point2f(r.x0 + (r.x1 - r.x0) * ((i % side) + 0.5f) / side,
+                                         r.y0 + (r.y1 - r.y0) * ((i / side) + 0.5f) / side),
+                             31.f);
+    }
+  }
+  const cv::Mat depth_image =
+      depth ? cv::Mat(camera.height, camera.width, CV_32FC1, cv::Scalar(2.0f)) : cv::Mat();
+  return Frame::Create(0.0, keypoints, cv::Mat(static_cast<int>(keypoints.size()), 32, CV_8UC1, cv::Scalar(0)),
+                       depth_image, camera, ScalePyramid());
+}
+
+TEST(Tracker, StartsOnFewerKeypointsWhenTheyAreSpread) {
+  const TrackerOptions options;  // 500, or 150 over 4 of the 16 cells
+  EXPECT_TRUE(CanStartMap(KeypointsIn({{500, 0, 0, 100, 100}}), options));  // enough anywhere
+  EXPECT_FALSE(CanStartMap(KeypointsIn({{499, 0, 0, 100, 100}}), options));  // one cell
+  // A crowd covers the middle: 200 on the left and right quarters (8 cells).
+  const Frame sides = KeypointsIn({{100, 0, 0, 160, 480}, {100, 480, 0, 640, 480}});
+  EXPECT_TRUE(CanStartMap(sides, options));
+  EXPECT_FALSE(CanStartMap(KeypointsIn({{200, 0, 0, 160, 240}}), options));  // 2 cells: bunched
+  EXPECT_FALSE(CanStartMap(KeypointsIn({{149, 0, 0, 640, 480}}), options));  // spread, too few
+  EXPECT_TRUE(CanStartMap(KeypointsIn({{150, 0, 0, 640, 480}}), options));
+  TrackerOptions off = options;
+  off.min_init_points_spread = 0;
+  EXPECT_FALSE(CanStartMap(sides, off));
+  EXPECT_FALSE(CanStartMap(KeypointsIn({{600, 0, 0, 640, 480}}, /*depth=*/false), options));
+  TrackerOptions bad;
+  bad.min_init_points_spread = 600;  // above min_init_points
+  EXPECT_THROW(bad.Check(), Error);
 }
 
 TEST(Tracker, ReportsLostAndRecoversThroughTheReferenceKeyFrame) {
