@@ -68,9 +68,11 @@ struct SemanticThreadOptions {
   // 0.016-0.027 m at 60 %, where most frames wait). 75 % of the keypoints
   // were 42-62 % of the pixels on those frames (people hold more than their
   // share of keypoints); the share is now taken in pixels, which does not
-  // depend on what the extractor found. (0, 1]; 1 = only when everything
-  // was removed.
-  double wait_when_removed_share = 0.55;
+  // depend on what the extractor found. In pixels (2026-12-03, 5-6 runs
+  // each): 0.55 gave 1.28-1.35x real time, 0.0142-0.0190 m; 0.65
+  // 1.47-1.57x, 0.0152-0.0176 m; 0.8 1.69-1.74x but 0.020 and 0.063 m.
+  // (0, 1]; 1 = only when everything was removed.
+  double wait_when_removed_share = 0.65;
   // Asynchronous only: a keyframe made from a frame with carried masks is
   // held back from the map until that frame's own masks arrive (it is
   // segmented, unless it was already), and only its keypoints outside them
