@@ -96,9 +96,11 @@ SemanticFeed::FrameMasks SemanticFeed::ForFrame(long frame_id, const cv::Mat& co
     pending = worker_->Submit(out.image, asynchronous() ? frame_id : -1);
   }
   last_segmented_ = frame_id;
-  out.prior = [this, pending] {
+  out.prior = [this, pending, frame_id] {
     const semantic::SegmentationResult& masks = pending.get();
     timings_->Add("semantic", masks.seconds * 1e3);
+    // Asynchronous, published under frame_id: not timed again when later frames carry it.
+    last_timed_mask_ = std::max(last_timed_mask_, frame_id);
     return dynamic::SemanticMasks{masks.dynamic_mask, masks.movable_mask};
   };
   return out;
@@ -129,7 +131,7 @@ dynamic::SemanticMasks SemanticFeed::CarriedMasks(long frame_id) {
   if (!latest) return {};  // nothing segmented yet: geometry alone
   const semantic::SegmentationResult& masks = latest->result;
   const long age = frame_id - latest->frame_id;
-  if (latest->frame_id != last_timed_mask_) {  // the network's time, once per segmented frame
+  if (latest->frame_id > last_timed_mask_) {  // the network's time, once per segmented frame
     timings_->Add("semantic", masks.seconds * 1e3);
     last_timed_mask_ = latest->frame_id;
   }

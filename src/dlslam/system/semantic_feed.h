@@ -151,7 +151,7 @@ class SemanticFeed {
     Masks masks;
   };
   std::deque<AheadFrame> ahead_;
-  long last_timed_mask_ = -1;       // the newest carried mask's frame, timed as "semantic"
+  long last_timed_mask_ = -1;  // the newest segmented frame timed as "semantic" (once, carried or own)
   long last_segmented_ = -1000000;  // the newest frame handed to the network
 };
 
