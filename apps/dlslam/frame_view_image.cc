@@ -68,7 +68,6 @@ void RemovalImageWriter::Write(std::size_t index, const std::string& name, const
     throw Error(fmt::format("{}: cannot write: {}", file.string(), e.what()));
   }
   if (!ok) throw Error(fmt::format("{}: cannot write", file.string()));
-  ++written_;
 }
 
 }  // namespace dlslam::app

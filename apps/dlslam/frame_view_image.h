@@ -25,13 +25,10 @@ class RemovalImageWriter {
   // Writes frame `index` (every `every`-th) as <name>.jpg; throws Error
   // naming the file when it cannot.
   void Write(std::size_t index, const std::string& name, const cv::Mat& colour, const SlamSystem::FrameView& view);
-  int written() const { return written_; }
-  const std::filesystem::path& folder() const { return folder_; }
 
  private:
   std::filesystem::path folder_;
   int every_;
-  int written_ = 0;
 };
 
 }  // namespace dlslam::app

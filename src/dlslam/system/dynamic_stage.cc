@@ -118,7 +118,8 @@ DynamicRemoval DynamicStage::Process(const Frame& frame, const cv::Mat& depth, c
   removal.keypoints = removal.mask.empty() ? std::vector<bool>(frame.size(), false) : frame.OnMask(removal.mask);
   removal.count = static_cast<std::size_t>(std::count(removal.keypoints.begin(), removal.keypoints.end(), true));
   stats_.keypoints_removed += static_cast<std::int64_t>(removal.count);
-  stats_.pixels_removed += removal.mask.empty() ? 0 : cv::countNonZero(removal.mask);
+  removal.pixels = removal.mask.empty() ? 0 : static_cast<std::size_t>(cv::countNonZero(removal.mask));
+  stats_.pixels_removed += static_cast<std::int64_t>(removal.pixels);
   stats_.pixels_total += static_cast<std::int64_t>(removal.mask.empty() ? depth.total() : removal.mask.total());
   if (!moving_truth.empty()) CountAgainstTruth(frame, removal.keypoints, moving_truth);
   return removal;

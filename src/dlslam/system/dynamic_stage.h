@@ -100,6 +100,8 @@ struct DynamicRemoval {
   cv::Mat mask;                  // CV_8UC1, 255 = removed; empty when nothing is (mode orb)
   std::vector<bool> keypoints;   // per keypoint of the frame: on the mask
   std::size_t count = 0;         // keypoints on the mask
+  std::size_t pixels = 0;        // pixels on the mask
+  double image_share() const { return mask.empty() ? 0.0 : static_cast<double>(pixels) / static_cast<double>(mask.total()); }
 };
 
 // A keyframe's keypoints that have depth, in world coordinates, with the map

@@ -204,10 +204,12 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     if (removal.keypoints[i]) last_view_.removed.push_back(features.keypoints[i].pt);
   }
   last_view_.removed_mask = removal.mask;
-  // The prior's part of what was removed (policy geometry removes none of it).
-  last_view_.prior_mask = prior.removal.empty() || removal.mask.empty() ? cv::Mat() : (prior.removal & removal.mask);
-  last_removed_share_ =
-      removal.mask.empty() ? 0.0 : cv::countNonZero(removal.mask) / static_cast<double>(removal.mask.total());
+  // The prior's part of what was removed: all of prior.removal when final,
+  // else what the fusion kept of it (policy geometry keeps none).
+  last_view_.prior_mask = prior.removal.empty() || removal.mask.empty() ? cv::Mat()
+                          : prior.final                               ? prior.removal
+                                                                      : (prior.removal & removal.mask);
+  last_removed_share_ = removal.image_share();
   if (removal.count > 0) {
     // Tracking and mapping see only static keypoints: extracted again
     // outside the removed regions when many were removed, else the others.
