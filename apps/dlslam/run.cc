@@ -117,6 +117,9 @@ config::RunOptions RunOptionsFrom(const RunArgs& args) {
 RunOutcome RunSequence(const RunArgs& args) {
   if (args.localize && args.load_map.empty()) throw Error("--localize needs a map to localize in: --load-map FILE");
   config::RunOptions run_options = RunOptionsFrom(args);
+  // Before anything is loaded: a bad output folder fails at once.
+  std::optional<RemovalImageWriter> removal_images;
+  if (!args.removal_images.empty()) removal_images.emplace(args.removal_images, args.removal_images_every);
   SystemOptions& options = run_options.system;
   const bool wants_prior = UsesSemanticPrior(options.dynamic.mode);
   io::RgbdSequenceOptions sequence_options = args.sequence_options;
@@ -169,8 +172,6 @@ RunOutcome RunSequence(const RunArgs& args) {
     live = std::make_unique<LiveView>(args.view_port, title, ToString(options.dynamic.mode), &slam);
     spdlog::info("live view on http://127.0.0.1:{}/", live->port());
   }
-  std::optional<RemovalImageWriter> removal_images;
-  if (!args.removal_images.empty()) removal_images.emplace(args.removal_images, args.removal_images_every);
   int posed = 0;
   // Frames are read ahead in a thread of their own, as a camera delivers them.
   const Stopwatch loop_watch;
