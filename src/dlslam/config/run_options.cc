@@ -95,6 +95,7 @@ void Visit(TrackerOptions& o, V& v) {
   v.Value("max_mapping_backlog", o.max_mapping_backlog, {"keyframes", "no new keyframe while this many wait for mapping"});
   v.Value("min_new_points", o.min_new_points, {"points", "a keyframe creates at least this many depth points"});
   v.Value("max_coasting_frames", o.max_coasting_frames, {"frames", "in a row on the motion model when tracking fails"});
+  v.Value("coasting_velocity_frames", o.coasting_velocity_frames, {"frames", "coasting moves on the median motion of this many tracked frames"});
   v.Value("min_coasting_inliers", o.min_coasting_inliers, {"inliers", "to refine a coasting pose on its matches"});
   v.Value("max_coasting_correction_m", o.max_coasting_correction_m, {"m", "largest refinement of a coasting pose"});
   v.Value("max_coasting_correction_deg", o.max_coasting_correction_deg, {"deg", "largest refinement of a coasting pose"});

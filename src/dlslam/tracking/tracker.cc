@@ -41,6 +41,8 @@ void TrackerOptions::Check() const {
   DLSLAM_CHECK(max_coasting_frames >= 0 && max_coasting_frames <= 1000,
                "TrackerOptions::max_coasting_frames {} outside [0, 1000]", max_coasting_frames);
   DLSLAM_CHECK_GE(min_coasting_inliers, 3);
+  DLSLAM_CHECK(coasting_velocity_frames >= 1 && coasting_velocity_frames <= 1000,
+               "TrackerOptions::coasting_velocity_frames {} outside [1, 1000]", coasting_velocity_frames);
   DLSLAM_CHECK(max_coasting_correction_m > 0 && max_coasting_correction_deg > 0,
                "TrackerOptions::max_coasting_correction {} m, {} deg must be > 0", max_coasting_correction_m,
                max_coasting_correction_deg);
@@ -117,6 +119,8 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
     }
   }
   SE3d coasted;
+  // Coasting starts: on the recent motion, not on the last frame's alone.
+  if (!ok && state_ == TrackingState::kOk && !recent_motions_.empty()) velocity_ = CoastingVelocity();
   if (!ok && Coast(pose, searched_local_map ? result.inliers : 0, &coasted)) {
     state_ = TrackingState::kCoasting;
     ++coasted_frames_;
@@ -151,6 +155,7 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
     if (state_ == TrackingState::kLost) ++lost_frames_;
     state_ = TrackingState::kLost;
     velocity_.reset();
+    recent_motions_.clear();
     result.relocalized = false;
     result.relocalization_keyframe = kNoId;
     result.state = state_;
@@ -165,6 +170,14 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
   // Back from a loss (relocalized, or found again from the reference
   // keyframe) the last pose is from before it: no motion model.
   velocity_ = last_pose_ && !back_from_loss ? std::optional<SE3d>(pose * last_pose_->Inverse()) : std::nullopt;
+  if (!velocity_) {
+    recent_motions_.clear();
+  } else if (!coasting) {  // a motion from a coasted pose is not the camera's
+    recent_motions_.push_back(velocity_->Log());
+    while (recent_motions_.size() > static_cast<std::size_t>(options_.coasting_velocity_frames)) {
+      recent_motions_.pop_front();
+    }
+  }
   ++frames_since_keyframe_;
   last_matches_ = matches;
   // A map moved by loop closing during this call: the pose is from before,
@@ -193,6 +206,7 @@ void Tracker::StartInMap(KeyFrameId reference) {
   reference_keyframe_ = reference;
   last_pose_.reset();
   velocity_.reset();
+  recent_motions_.clear();
 }
 
 bool Tracker::Coast(const SE3d& refined, int inliers, SE3d* pose) const {
@@ -262,6 +276,7 @@ bool Tracker::StartMap(const std::shared_ptr<const Frame>& frame, const SE3d& po
   RememberPose(pose, reference_keyframe_, map_->Generation());
   last_timestamp_ = frame->timestamp();
   velocity_.reset();
+  recent_motions_.clear();
   result->cam_from_world = pose;
   result->cam_from_reference = SE3d::Identity();
   result->new_keyframe = true;
@@ -347,6 +362,19 @@ SE3d Tracker::PredictedPose() const {
   // Right after a keyframe or a relocation there is no velocity: assume none.
   const SE3d last = LastPose();
   return velocity_ ? *velocity_ * last : last;
+}
+
+SE3d Tracker::CoastingVelocity() const {
+  DLSLAM_CHECK(!recent_motions_.empty());
+  Eigen::Matrix<double, 6, 1> median;
+  std::vector<double> values(recent_motions_.size());
+  for (int c = 0; c < 6; ++c) {
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = recent_motions_[i][c];
+    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+    std::nth_element(values.begin(), middle, values.end());
+    median[c] = *middle;
+  }
+  return SE3d::Exp(median);
 }
 
 SE3d Tracker::LastPose() const {

@@ -282,6 +282,40 @@ TEST(Tracker, CoastsThroughAShortOcclusion) {
   EXPECT_LT((back.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm(), 0.005);
 }
 
+// The frame before an occlusion tracked 8 cm off the smooth path (below the
+// jump guard: a pose pulled by people stepping in front): coasting moves on
+// the median of the recent motions, not on that last step, so the covered
+// frames stay about 8 cm off instead of drifting 8 cm further each frame.
+TEST(Tracker, CoastsOnTheRecentMotionNotOnTheLastStep) {
+  const auto scene = testing::LandmarkScene::Room(6000, 10);
+  const SE3d world_from_first = CamFromWorld(0).Inverse();
+  for (const int frames : {10, 1}) {
+    SCOPED_TRACE(frames);
+    Map map;
+    TrackerOptions options;
+    options.coasting_velocity_frames = frames;
+    Tracker tracker(options, &map);
+    for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+    const SE3d pulled = SE3d(SO3d(), Eigen::Vector3d(0.08, 0.0, 0.0)) * CamFromWorld(10);
+    const TrackingResult r10 = tracker.Track(scene.MakeFrame(pulled, 10 / 30.0, 60));
+    ASSERT_EQ(r10.state, TrackingState::kOk);
+    ASSERT_FALSE(r10.jump_refused);
+    double error = 0;
+    for (int i = 11; i < 16; ++i) {
+      const Frame covered = Frame::Create(i / 30.0, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
+      const TrackingResult r = tracker.Track(std::make_shared<Frame>(covered));
+      ASSERT_EQ(r.state, TrackingState::kCoasting) << "frame " << i;
+      const SE3d truth = CamFromWorld(i) * world_from_first;
+      error = (r.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm();
+    }
+    if (frames == 10) {
+      EXPECT_LT(error, 0.1);  // the 8 cm it was pulled, and no more
+    } else {
+      EXPECT_GT(error, 0.3);  // the last step repeated 5 times
+    }
+  }
+}
+
 // A frame whose map matches give a pose the camera cannot have reached since
 // the last frame (here: a view from 0.6 m away, as when people walking
 // together are taken for the scene) is refused: it coasts on the motion
