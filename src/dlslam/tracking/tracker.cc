@@ -154,8 +154,7 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
   if (!ok) {
     if (state_ == TrackingState::kLost) ++lost_frames_;
     state_ = TrackingState::kLost;
-    velocity_.reset();
-    recent_motions_.clear();
+    ForgetMotion();
     result.relocalized = false;
     result.relocalization_keyframe = kNoId;
     result.state = state_;
@@ -205,8 +204,7 @@ void Tracker::StartInMap(KeyFrameId reference) {
   state_ = TrackingState::kLost;
   reference_keyframe_ = reference;
   last_pose_.reset();
-  velocity_.reset();
-  recent_motions_.clear();
+  ForgetMotion();
 }
 
 bool Tracker::Coast(const SE3d& refined, int inliers, SE3d* pose) const {
@@ -275,8 +273,7 @@ bool Tracker::StartMap(const std::shared_ptr<const Frame>& frame, const SE3d& po
       InsertKeyFrame(frame, pose, std::vector<MapPointId>(frame->size(), kNoId), /*all_depth_points=*/true);
   RememberPose(pose, reference_keyframe_, map_->Generation());
   last_timestamp_ = frame->timestamp();
-  velocity_.reset();
-  recent_motions_.clear();
+  ForgetMotion();
   result->cam_from_world = pose;
   result->cam_from_reference = SE3d::Identity();
   result->new_keyframe = true;
@@ -362,6 +359,11 @@ SE3d Tracker::PredictedPose() const {
   // Right after a keyframe or a relocation there is no velocity: assume none.
   const SE3d last = LastPose();
   return velocity_ ? *velocity_ * last : last;
+}
+
+void Tracker::ForgetMotion() {
+  velocity_.reset();
+  recent_motions_.clear();
 }
 
 SE3d Tracker::CoastingVelocity() const {

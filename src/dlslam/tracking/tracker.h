@@ -78,11 +78,6 @@ struct TrackerOptions {
   // (0 = none: a failure is lost at once) [frames; 10 = 1/3 s at 30 Hz,
   // about how long a person walking past covers the view].
   int max_coasting_frames = 10;
-  // A coasting frame's pose is refined on its local-map matches when at
-  // least this many are inliers and the refined pose stays within
-  // max_coasting_correction of the prediction; otherwise it is the
-  // prediction itself.
-  int min_coasting_inliers = 10;
   // Coasting moves on the median (per component of the se(3) logarithm) of
   // the frame-to-frame motions of the last this many tracked frames, not on
   // the last one alone [frames, >= 1; 1 = the last motion]: the frame
@@ -91,6 +86,11 @@ struct TrackerOptions {
   // the frame before coasting where the camera moved 8 mm, then 0.115 m per
   // coasted frame, 0.6 m off after 6).
   int coasting_velocity_frames = 10;
+  // A coasting frame's pose is refined on its local-map matches when at
+  // least this many are inliers and the refined pose stays within
+  // max_coasting_correction of the prediction; otherwise it is the
+  // prediction itself.
+  int min_coasting_inliers = 10;
   double max_coasting_correction_m = 0.05;
   double max_coasting_correction_deg = 3.0;
   // A tracked pose that departs from the constant-velocity prediction by
@@ -243,6 +243,8 @@ class Tracker {
   SE3d PredictedPose() const;
   // The median of recent_motions_ (TrackerOptions::coasting_velocity_frames).
   SE3d CoastingVelocity() const;
+  // No motion model: the velocity and the motions it is taken from.
+  void ForgetMotion();
   // `generation`: the map's when the pose was computed.
   void RememberPose(const SE3d& pose, KeyFrameId reference, std::uint64_t generation);
   bool NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches, KeyFrameId reference) const;
