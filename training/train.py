@@ -41,6 +41,9 @@ def parse_args(argv=None):
                     help='deployment input size (16k+1)')
     ap.add_argument('--crop', type=int, nargs=2, default=(193, 257), metavar=('H', 'W'), help='training crop')
     ap.add_argument('--batch', type=int, default=8)
+    ap.add_argument('--mix', help='share of each source per batch, e.g. human-seg=0.3,ccp=0.2,kitchen=0.1,'
+                    'paste=0.15,crowd=0.15,bonn=0.1 (default: datasets/seg_dataset.py DEFAULT_MIX)')
+    ap.add_argument('--extended-aug', action='store_true', help='also motion blur and low light')
     ap.add_argument('--steps', type=int, default=6000, help='total optimiser steps (poly LR horizon)')
     ap.add_argument('--epoch-steps', type=int, default=250, help='steps between evaluations')
     ap.add_argument('--ckpt-every', type=int, default=50, help='steps between resume checkpoints')
@@ -173,7 +176,10 @@ def data_loader(args, start_step):
             else SyntheticDataset(tuple(args.crop), n, args.seed)
         print(f'one-batch data: {"real" if rows else "synthetic"}', flush=True)
     else:
-        ds = TrainDataset(read_split('train'), tuple(args.input), tuple(args.crop), args.seed, num_classes=n)
+        from datasets.seg_dataset import parse_mix
+        ds = TrainDataset(read_split('train'), tuple(args.input), tuple(args.crop), args.seed, num_classes=n,
+                          mix=parse_mix(args.mix) if args.mix else None,
+                          extended_photometric=args.extended_aug)
     order = range(start_step * args.batch, args.steps * args.batch)
     # its own generator: creating the iterator must not draw from the global RNG (dropout), or a resumed
     # run would see different dropout masks from an uninterrupted one

@@ -11,9 +11,28 @@ from .augment import (image_to_teacher_grid, labels_from, photometric, random_ma
                       warp_logp)
 from .teacher_cache import load_cached
 
-# share of each source in a training batch; 'paste' = a kitchen frame with a person pasted in
+# share of each source in a training batch; 'paste' = a kitchen frame with one or two people pasted in,
+# 'crowd' = a kitchen frame with 2-5 smaller people (street scenes and crowds: many people, a few dozen
+# pixels tall, which the first model missed most)
 DEFAULT_MIX = {'human-seg': 0.35, 'ccp': 0.25, 'kitchen': 0.15, 'paste': 0.25}
 PERSON_SOURCES = ('human-seg', 'ccp', 'davis')
+# sources without masks whose people come from the teacher (real frames with people, unlabelled)
+TEACHER_PERSON_SOURCES = ('bonn',)
+# pasted sources: (scale of the person photo against the frame, how many people, placed anywhere in the
+# frame or centred when smaller than it)
+PASTED = {'paste': ((0.4, 1.1), lambda rng: 1 + int(rng.random() < 0.3), False),
+          'crowd': ((0.15, 0.6), lambda rng: int(rng.integers(2, 6)), True)}
+
+
+def parse_mix(text):
+    """'human-seg=0.3,ccp=0.2,...' -> dict; sources: split sources plus 'paste' and 'crowd'."""
+    mix = {}
+    for part in text.split(','):
+        name, _, weight = part.partition('=')
+        if not weight or float(weight) < 0:
+            raise ValueError(f'--mix: expected source=weight, got {part!r}')
+        mix[name.strip()] = float(weight)
+    return mix
 
 
 def to_tensor(bgr):
@@ -59,8 +78,9 @@ class TrainDataset(Dataset):
     """Item i is a pure function of (seed, i): resuming at a step reproduces the same batches exactly."""
 
     def __init__(self, rows, input_hw=(257, 337), crop_hw=(257, 337), seed=0, mix=None, num_classes=3,
-                 max_per_source=None):
+                 max_per_source=None, extended_photometric=False):
         self.input_hw, self.crop_hw, self.seed, self.num_classes = input_hw, crop_hw, seed, num_classes
+        self.extended_photometric = extended_photometric
         self.mix = dict(mix or DEFAULT_MIX)
         by_source = {}
         for r in rows:
@@ -68,7 +88,7 @@ class TrainDataset(Dataset):
         self.rows = {k: v[:max_per_source] if max_per_source else v for k, v in by_source.items()}
         self.people = [r for k in PERSON_SOURCES for r in self.rows.get(k, [])]
         self._cache = {}
-        names = [k for k in self.mix if (k == 'paste' and self.people and self.rows.get('kitchen'))
+        names = [k for k in self.mix if (k in PASTED and self.people and self.rows.get('kitchen'))
                  or self.rows.get(k)]
         w = np.array([self.mix[k] for k in names], np.float64)
         self.sources, self.weights = names, w / w.sum()
@@ -85,24 +105,24 @@ class TrainDataset(Dataset):
     def __getitem__(self, index):
         rng = np.random.default_rng([self.seed, index])
         src = self.sources[rng.choice(len(self.sources), p=self.weights)]
-        if src == 'paste':
-            return self._pasted(rng)
+        if src in PASTED:
+            return self._pasted(rng, *PASTED[src])
         rows = self.rows[src]
         s = self._sample(rows[rng.integers(len(rows))])
         m = random_map(rng, s.image.shape[:2], self.input_hw, self.crop_hw)
         img, person, valid, logp = s.warped(m, self.crop_hw)
-        return self._finish(rng, img, person, valid, logp, s.has_teacher)
+        return self._finish(rng, img, person, valid, logp, s.has_teacher, src in TEACHER_PERSON_SOURCES)
 
-    def _pasted(self, rng):
+    def _pasted(self, rng, scale, count, anywhere):
         bg = self._sample(self.rows['kitchen'][rng.integers(len(self.rows['kitchen']))])
         img, _, valid, logp = bg.warped(random_map(rng, bg.image.shape[:2], self.input_hw, self.crop_hw),
                                         self.crop_hw)
         person = np.zeros(self.crop_hw, bool)
         has_teacher = bg.has_teacher
-        for _ in range(1 + (rng.random() < 0.3)):
+        for _ in range(count(rng)):
             p = self._sample(self.people[rng.integers(len(self.people))])
-            # the person photo at 0.4-1.1 of the frame, anywhere: no border padding visible, only its mask
-            m = random_map(rng, p.image.shape[:2], self.input_hw, self.crop_hw, scale=(0.4, 1.1))
+            # the person photo at `scale` of the frame, anywhere: no border padding visible, only its mask
+            m = random_map(rng, p.image.shape[:2], self.input_hw, self.crop_hw, scale=scale, anywhere=anywhere)
             p_img, p_mask, p_valid, p_logp = p.warped(m, self.crop_hw)
             alpha = cv2.GaussianBlur((p_mask & p_valid).astype(np.float32), (0, 0), 0.8)[..., None]
             img = (alpha * p_img + (1 - alpha) * img).astype(np.uint8)
@@ -112,9 +132,9 @@ class TrainDataset(Dataset):
             has_teacher = has_teacher and p.has_teacher
         return self._finish(rng, img, person, valid, logp, has_teacher)
 
-    def _finish(self, rng, img, person, valid, logp, has_teacher):
-        label = labels_from(person, valid, logp, self.num_classes)
-        return to_tensor(photometric(rng, img)), torch.from_numpy(label.astype(np.int64)), \
+    def _finish(self, rng, img, person, valid, logp, has_teacher, teacher_person=False):
+        label = labels_from(person, valid, logp, self.num_classes, teacher_person)
+        return to_tensor(photometric(rng, img, self.extended_photometric)), torch.from_numpy(label.astype(np.int64)), \
             torch.from_numpy(np.ascontiguousarray(logp)), torch.tensor(float(has_teacher))
 
 

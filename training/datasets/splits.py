@@ -4,7 +4,8 @@
 Each line: `<source> <image path> <mask path or ->`, paths relative to the shared data folder.
 Validation (never trained on): a seeded 25 % of human-seg, all of davis-parkour (one video, kept whole),
 a seeded 10 % of ccp-person and the last 100 frames of the 7-Scenes kitchen clip (negatives; frames are
-consecutive, so the held-out part is one contiguous block)."""
+consecutive, so the held-out part is one contiguous block). Training only: the 300 real Bonn crowd frames
+(no masks: people from the full teacher's labels), real indoor frames of people as the robot sees them."""
 import glob
 import os
 import random
@@ -46,6 +47,8 @@ def make_splits():
     kitchen = [('kitchen', os.path.relpath(p, SHARED_DATA), '-') for p in kitchen]
     train += kitchen[:-100]
     val += kitchen[-100:]
+    bonn = sorted(glob.glob(os.path.join(SHARED_DATA, 'bonn', 'rgbd_bonn_crowd_280-579', 'rgb', '*.jpg')))
+    train += [('bonn', os.path.relpath(p, SHARED_DATA), '-') for p in bonn]
     return sorted(train), sorted(val)
 
 
