@@ -61,6 +61,12 @@ std::optional<SegmentationWorker::Published> SegmentationWorker::Latest() const 
   return Published{published_->frame_id, DeepCopy(published_->result)};
 }
 
+void SegmentationWorker::Publish(long frame_id, const SegmentationResult& result) {
+  std::lock_guard lock(published_mutex_);
+  if (published_ && published_->frame_id >= frame_id) return;
+  published_ = Published{frame_id, DeepCopy(result)};
+}
+
 void SegmentationWorker::Stop() {
   std::lock_guard lock(stop_mutex_);
   stopping_.store(true);
@@ -97,10 +103,7 @@ void SegmentationWorker::Run() {
     }
     try {
       SegmentationResult result = Process(*job);
-      if (job->publish_as >= 0) {
-        std::lock_guard lock(published_mutex_);
-        published_ = Published{job->publish_as, DeepCopy(result)};
-      }
+      if (job->publish_as >= 0) Publish(job->publish_as, result);
       job->promise.set_value(std::move(result));
     } catch (...) {
       job->promise.set_exception(std::current_exception());

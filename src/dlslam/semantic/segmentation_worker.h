@@ -69,9 +69,13 @@ class SegmentationWorker {
     long frame_id = -1;
     SegmentationResult result;  // owns its pixels
   };
-  // The newest segmentation finished from TrySubmit, a deep copy; nullopt
-  // before the first. Any thread.
+  // The newest segmentation finished from TrySubmit (or Submit with
+  // `publish_as`, or Publish), a deep copy; nullopt before the first. Any thread.
   std::optional<Published> Latest() const;
+  // Publishes a result the caller got from Submit for Latest() under
+  // `frame_id` (a frame submitted before its id was known), unless a newer
+  // frame's result is published already. Any thread.
+  void Publish(long frame_id, const SegmentationResult& result);
 
   // Finishes the frame being segmented, fails the queued ones (their futures
   // throw "stopped") and joins the thread. Idempotent.

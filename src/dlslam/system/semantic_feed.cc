@@ -76,7 +76,11 @@ SemanticFeed::FrameMasks SemanticFeed::ForFrame(long frame_id, const cv::Mat& co
     recent_.push_back({frame_id, depth.empty() ? cv::Mat() : depth.clone(), std::nullopt});
     if (recent_.size() > kRecentFrames) recent_.pop_front();
   }
-  if (carry) {
+  // Frames segmented ahead but never tracked are dropped; one segmented
+  // ahead gets its own masks even where carried ones would do.
+  while (!ahead_.empty() && ahead_.front().timestamp < timestamp) ahead_.pop_front();
+  const bool ahead = !ahead_.empty() && ahead_.front().timestamp == timestamp;
+  if (carry && !ahead) {
     if (frame_id - last_segmented_ >= options_.carried_segment_every) {
       out.own = worker_->TrySubmit(out.image, frame_id);  // a busy network skips the frame
       if (out.own) last_segmented_ = frame_id;
@@ -86,9 +90,7 @@ SemanticFeed::FrameMasks SemanticFeed::ForFrame(long frame_id, const cv::Mat& co
     return out;
   }
   Masks pending;
-  // Frames segmented ahead but never tracked are dropped.
-  while (!ahead_.empty() && ahead_.front().timestamp < timestamp) ahead_.pop_front();
-  if (!ahead_.empty() && ahead_.front().timestamp == timestamp) {
+  if (ahead) {
     pending = ahead_.front().masks;  // segmented while the last frame was tracked
     ahead_.pop_front();
     out.segmented_ahead = true;
@@ -96,9 +98,19 @@ SemanticFeed::FrameMasks SemanticFeed::ForFrame(long frame_id, const cv::Mat& co
     pending = worker_->Submit(out.image, asynchronous() ? frame_id : -1);
   }
   last_segmented_ = frame_id;
-  out.prior = [this, pending, frame_id] {
+  // Asynchronous: this frame waits (crowded) and so will the next, mostly.
+  // Not when it only had masks ahead: that would chain every later frame.
+  if (asynchronous() && !carry && next_ && next_->timestamp > timestamp && ahead_.empty()) {
+    ahead_.push_back({next_->timestamp, worker_->Submit(NetworkImage(next_->image, /*copy=*/true))});
+  }
+  next_.reset();
+  // Asynchronous: segmented ahead before its id was known, published for
+  // carrying once got (Submit published the others).
+  const bool publish = asynchronous() && out.segmented_ahead;
+  out.prior = [this, pending, frame_id, publish] {
     const semantic::SegmentationResult& masks = pending.get();
     timings_->Add("semantic", masks.seconds * 1e3);
+    if (publish) worker_->Publish(frame_id, masks);
     // Asynchronous, published under frame_id: not timed again when later frames carry it.
     last_timed_mask_ = std::max(last_timed_mask_, frame_id);
     return dynamic::SemanticMasks{masks.dynamic_mask, masks.movable_mask};
@@ -116,8 +128,13 @@ SemanticFeed::Masks SemanticFeed::Segment(const cv::Mat& image, long frame_id) {
 }
 
 void SemanticFeed::SegmentAhead(const cv::Mat& colour, double timestamp) {
+  if (asynchronous()) {
+    // Not copied unless segmented: the caller keeps it unchanged until it is tracked.
+    if (!next_ || timestamp > next_->timestamp) next_ = NextFrame{timestamp, colour};
+    return;
+  }
   constexpr std::size_t kMaxAhead = 2;  // the frame being tracked and the next
-  if (asynchronous() || ahead_.size() >= kMaxAhead) return;
+  if (ahead_.size() >= kMaxAhead) return;
   if (!ahead_.empty() && timestamp <= ahead_.back().timestamp) return;  // not in frame order
   // A copy: the caller's image may be reused before the worker reads it.
   ahead_.push_back({timestamp, worker_->Submit(NetworkImage(colour, /*copy=*/true))});

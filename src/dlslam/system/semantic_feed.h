@@ -124,8 +124,12 @@ class SemanticFeed {
   void SetPose(long frame_id, const std::optional<SE3d>& cam_from_world);
   // Segments a frame's image (FrameMasks::image) now, e.g. for a held keyframe.
   Masks Segment(const cv::Mat& image, long frame_id);
-  // SlamSystem::SegmentAhead: waiting for masks only, at most two frames
-  // ahead, in frame order. The colour image is checked by the caller.
+  // SlamSystem::SegmentAhead, in frame order; the colour image is checked
+  // by the caller. Waiting for masks: segmented now, at most two frames
+  // ahead. Asynchronous: kept, and segmented by the next ForFrame that gets
+  // its own masks (a crowd, tracking not ok), since the frame after such a
+  // frame mostly needs its own too: it then waits only for what is left of
+  // a run started a frame earlier, not for a whole run behind another.
   void SegmentAhead(const cv::Mat& colour, double timestamp);
   void Stop();
 
@@ -151,6 +155,12 @@ class SemanticFeed {
     Masks masks;
   };
   std::deque<AheadFrame> ahead_;
+  // Asynchronous: the frame after the one being tracked, not segmented yet.
+  struct NextFrame {
+    double timestamp = 0.0;
+    cv::Mat image;  // the caller's colour image (unchanged until tracked)
+  };
+  std::optional<NextFrame> next_;
   long last_timed_mask_ = -1;  // the newest segmented frame timed as "semantic" (once, carried or own)
   long last_segmented_ = -1000000;  // the newest frame handed to the network
 };

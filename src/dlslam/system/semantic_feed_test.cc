@@ -90,7 +90,7 @@ TEST(SemanticFeed, CarriedFramesGetTheNewestFinishedMasks) {
   // (with every frame, frame 2's could finish first: a race, failing 1 run in 6).
   Feed f(/*wait_for_masks=*/false, /*carried_segment_every=*/2);
   ASSERT_TRUE(f.feed->asynchronous());
-  f.feed->SegmentAhead(Image(5), 1.0);  // asynchronous masks segment the newest frame anyway
+  f.feed->SegmentAhead(Image(5), 1.0);  // kept, segmented only after a frame that waits
   SemanticFeed::FrameMasks first = f.feed->ForFrame(1, Image(12), cv::Mat(), 1.0, /*carry=*/true);
   EXPECT_TRUE(first.carried);
   EXPECT_FALSE(first.segmented_ahead);
@@ -108,6 +108,35 @@ TEST(SemanticFeed, CarriedFramesGetTheNewestFinishedMasks) {
   EXPECT_FALSE(own.carried);
   EXPECT_EQ(MadeOn(own.prior().dynamic), 40);
   EXPECT_EQ(MadeOn(f.feed->Segment(own.image, 4).get().dynamic_mask), 40);
+  f.feed->Stop();
+}
+
+TEST(SemanticFeed, AfterAWaitingFrameTheNextIsSegmentedAhead) {
+  // As dlslam run calls it: the frame read ahead is offered before the current one is tracked.
+  // Frames 1, 2, 3 show squares at x = 5, 40, 60.
+  Feed f(/*wait_for_masks=*/false, /*carried_segment_every=*/2);
+  f.feed->SegmentAhead(Image(5), 1.0);
+  f.feed->SegmentAhead(Image(40), 2.0);
+  // A crowded frame waits for its own masks; the network takes the next frame right after it.
+  SemanticFeed::FrameMasks m = f.feed->ForFrame(1, Image(5), cv::Mat(), 1.0, /*carry=*/false);
+  EXPECT_FALSE(m.segmented_ahead);
+  EXPECT_EQ(MadeOn(m.prior().dynamic), 5);
+  f.feed->SegmentAhead(Image(60), 3.0);
+  // The next frame has its own masks, started ahead, even where carried ones would do...
+  m = f.feed->ForFrame(2, Image(40), cv::Mat(), 2.0, /*carry=*/true);
+  EXPECT_TRUE(m.segmented_ahead);
+  EXPECT_FALSE(m.carried);
+  EXPECT_EQ(MadeOn(m.prior().dynamic), 40);
+  // ... but does not start the one after it: that frame carries frame 2's masks, published when taken.
+  f.feed->SegmentAhead(Image(70), 4.0);
+  m = f.feed->ForFrame(3, Image(60), cv::Mat(), 3.0, /*carry=*/true);
+  EXPECT_TRUE(m.carried);
+  EXPECT_FALSE(m.segmented_ahead);
+  const cv::Mat carried = m.prior().dynamic;
+  ASSERT_FALSE(carried.empty());
+  EXPECT_NE(carried.at<uchar>(15, 44), 0);  // frame 2's square, grown
+  EXPECT_EQ(carried.at<uchar>(15, 8), 0);   // not frame 1's
+  EXPECT_EQ(f.timings.Summaries().at("semantic_age_frames").max, 1.0);
   f.feed->Stop();
 }
 

@@ -314,7 +314,7 @@ void SlamSystem::CheckColour(const cv::Mat& colour, double timestamp) const {
 
 void SlamSystem::SegmentAhead(const cv::Mat& colour, double timestamp) {
   DLSLAM_CHECK(!shut_down_, "the system was shut down");
-  if (!semantic_ || semantic_->asynchronous()) return;
+  if (!semantic_) return;
   CheckColour(colour, timestamp);
   semantic_->SegmentAhead(colour, timestamp);
 }

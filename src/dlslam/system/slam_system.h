@@ -177,8 +177,10 @@ class SlamSystem {
   // then uses these masks (the image must not change meanwhile; other
   // timestamps drop it). Call in frame order, the first frame too; at most
   // two frames are ahead (more are not segmented ahead). Does nothing
-  // unless the system's network waits for masks (options.semantic: network
-  // and wait_for_masks; asynchronous masks segment the newest frame anyway).
+  // without the system's network (options.semantic.network). With
+  // asynchronous masks the frame is segmented ahead only when the current
+  // one waits for its own masks (a crowd, tracking not ok), since the next
+  // frame then mostly waits too.
   void SegmentAhead(const cv::Mat& colour, double timestamp);
   // Loads a map saved by SaveMap before the first frame: tracking starts by
   // relocalizing in it; with options.localization_only it is never
