@@ -431,6 +431,19 @@ TEST_F(RunCliTest, BenchTimesEachModeAndWritesJson) {
   EXPECT_TRUE(fs::exists(out_ / "bench" / "orb_report.json"));
 }
 
+// A config file sets bench's runs as it sets dlslam run's; the modes stay bench's.
+TEST_F(RunCliTest, BenchRunsWithAConfigFile) {
+  std::ofstream(out_ / "bench.yaml") << "dynamic:\n  mode: full\ntracker:\n  max_jump_speed: 6\nmapping:\n  thread_nice: 3\n";
+  const CliRun run = Cli("bench --sequence " + Quoted(Walk()) + " --modes orb --max-frames 20 --config " +
+                         Quoted(out_ / "bench.yaml") + " --out " + Quoted(out_ / "bench"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  nlohmann::json j;
+  std::ifstream(out_ / "bench" / "orb_report.json") >> j;
+  EXPECT_EQ(j.at("options").at("dynamic").at("mode"), "orb");
+  EXPECT_EQ(j.at("options").at("tracker").at("max_jump_speed"), 6.0);
+  EXPECT_EQ(j.at("options").at("mapping").at("thread_nice"), 3);
+}
+
 TEST_F(RunCliTest, BenchRefusesUnknownModes) {
   const CliRun run = Cli("bench --sequence " + Quoted(Walk()) + " --modes orb,dyna --out " + Quoted(out_ / "b"));
   EXPECT_NE(run.exit_code, 0);

@@ -14,6 +14,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -43,6 +44,10 @@ struct BenchArgs {
   std::string modes = "orb,geometry,full";
   bool sequential = false;
   int segment_every = 1;              // modes semantic, full: segment every k-th frame
+  bool async_masks = false;           // modes semantic, full: never wait for the network
+  fs::path semantic_model;            // "" = the shipped network
+  fs::path config;                    // every option from one YAML file; bench's flags override it
+  std::set<std::string> given;        // the flags given on the command line
   double camera_hz = 30.0;            // the frame budget is 1000 / camera_hz ms
   fs::path out = "dlslam-bench";
   io::RgbdSequenceOptions sequence_options;
@@ -163,6 +168,8 @@ nlohmann::ordered_json Json(const BenchArgs& args, const fs::path& sequence, con
   j["sequence"] = sequence.string();
   j["threads"] = args.sequential ? "sequential" : "threaded";
   j["segment_every"] = args.segment_every;
+  j["async_masks"] = args.async_masks;
+  j["config"] = args.config.string();  // "" = the defaults; its values under the flags given
   j["budget_ms"] = budget_ms;
   j["cores"] = std::thread::hardware_concurrency();
   j["load_average_before"] = load_before ? nlohmann::ordered_json(*load_before) : nlohmann::ordered_json();
@@ -221,6 +228,11 @@ void RunBench(const BenchArgs& args) {
     run.mode = mode;
     run.sequential = args.sequential;
     run.segment_every = args.segment_every;
+    run.async_masks = args.async_masks;
+    run.semantic_model = args.semantic_model;
+    run.config = args.config;
+    run.given = args.given;
+    run.given.insert("--mode");  // each run's mode is bench's, whatever the file says
     run.max_frames = args.max_frames;
     run.out = args.out / (mode + "_trajectory.txt");
     run.report = args.out / (mode + "_report.json");
@@ -259,13 +271,24 @@ void AddBenchCommand(CLI::App& app) {
                   "Modes semantic, full: segment every k-th frame, propagating the mask to the frames between")
       ->capture_default_str()
       ->check(WholeNumber(1, 100));
+  cmd->add_flag("--async-masks", args->async_masks,
+               "Modes semantic, full: never wait for the network; use its newest masks, carried to each frame");
+  cmd->add_option("--semantic-model", args->semantic_model, "Segmentation network (ONNX); default: the shipped one");
+  cmd->add_option("--config", args->config,
+                  "Every option of every module from one YAML file (dlslam config dump); flags given here override it");
   cmd->add_option("--camera-hz", args->camera_hz, "Camera frame rate: the budget per frame is 1000 / Hz ms")
       ->capture_default_str()->check(RealNumber(0.1, 1000));
   cmd->add_option("--out", args->out, "Output folder: bench.json, per-mode reports and trajectories")
       ->capture_default_str();
   cmd->add_option("--camera", args->sequence_options.camera_preset, "Camera preset: fr1, fr2, fr3, bonn");
   cmd->add_option("--depth-factor", args->sequence_options.depth_factor, "Raw depth units per metre")->check(RealNumber(kMinDepthFactor, kMaxDepthFactor));
-  cmd->callback([args] { RunBench(*args); });
+  cmd->callback([args, cmd] {
+    for (const CLI::Option* option : cmd->get_options()) {
+      if (option->count() == 0) continue;
+      for (const std::string& name : option->get_lnames()) args->given.insert("--" + name);
+    }
+    RunBench(*args);
+  });
 }
 
 }  // namespace dlslam::app

@@ -136,6 +136,7 @@ void Visit(BundleAdjusterOptions& o, V& v) {
 
 void Visit(LocalMapperOptions& o, V& v) {
   v.Value("queue_capacity", o.queue_capacity, {"keyframes", "waiting for local mapping; tracking blocks when full"});
+  v.Value("thread_nice", o.thread_nice, {"", "lower CPU priority than the tracker (nice increment, 0..19)"});
   v.Value("min_point_observations", o.min_point_observations, {"keyframes", "a recent point needs, or it is culled"});
   v.Value("min_found_ratio", o.min_found_ratio, {"", "found / visible a recent point needs"});
   v.Value("keyframe_redundancy", o.keyframe_redundancy, {"", "keyframes whose close points are this redundant are culled"});
@@ -245,6 +246,7 @@ void Visit(SemanticThreadOptions& o, V& v) {
   v.Value("queue_capacity", o.worker.queue_capacity, {"frames", "waiting to be segmented"});
   v.Value("segment_every", o.worker.segment_every, {"frames", "segment every k-th frame"});
   v.Value("propagation_grow_px", o.worker.propagation_grow_px, {"px/frame", "growth of a propagated mask"});
+  v.Value("thread_nice", o.worker.thread_nice, {"", "lower CPU priority than the tracker (nice increment, 0..19)"});
   v.End();
   v.Value("wait_for_masks", o.wait_for_masks, {"", "false: asynchronous masks (experimental)"});
   v.Value("carry_grow_px", o.carry_grow_px, {"px/frame", "asynchronous: growth of a carried mask per frame of age"});
@@ -294,6 +296,7 @@ void Visit(LoopClosingOptions& o, V& v) {
   v.Value("global_bundle_adjustment", o.global_bundle_adjustment, {"", "after each loop, in the background"});
   Section(v, "global_bundle", "global bundle adjustment", o.global_bundle);
   v.Value("queue_capacity", o.queue_capacity, {"keyframes", "waiting for loop detection"});
+  v.Value("thread_nice", o.thread_nice, {"", "lower CPU priority than the tracker (nice increment, 0..19)"});
 }
 
 void Visit(dense::TsdfOptions& o, V& v) {

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "dlslam/util/check.h"
+#include "dlslam/util/thread_priority.h"
 
 namespace dlslam {
 
@@ -11,6 +12,7 @@ void LoopClosingOptions::Check() const {
   correction.Check();
   global_bundle.Check();
   DLSLAM_CHECK_GT(queue_capacity, 0u);
+  DLSLAM_CHECK(thread_nice >= 0 && thread_nice <= 19, "thread_nice {} must be in 0..19", thread_nice);
 }
 
 LoopCloser::LoopCloser(const LoopClosingOptions& options, Map* map, const place::KeyFrameIndex* index,
@@ -55,6 +57,7 @@ LoopClosingStats LoopCloser::stats() const {
 }
 
 void LoopCloser::Run() {
+  LowerBackgroundPriority(options_.thread_nice, "loop closing");
   while (const std::optional<KeyFrameId> keyframe = queue_.Pop()) ProcessGuarded(*keyframe);
 }
 
@@ -121,6 +124,7 @@ void LoopCloser::AbortGlobalBundle() {
 }
 
 void LoopCloser::RunGlobalBundle() {
+  LowerBackgroundPriority(options_.thread_nice, "global bundle adjustment");
   try {
     const Stopwatch watch;
     const std::uint64_t generation = map_->Generation();

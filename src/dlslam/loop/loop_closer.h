@@ -33,6 +33,10 @@ struct LoopClosingOptions {
   // Keyframes waiting for loop detection [count]; when it is full, local
   // mapping does not wait: the keyframe is not checked (counted as skipped).
   std::size_t queue_capacity = 64;
+  // How much lower than the caller's its threads' CPU priority is (nice
+  // increment, 0..19; util/thread_priority.h): with fewer free cores than
+  // busy threads the tracker then gets a core first (see LocalMapperOptions).
+  int thread_nice = 10;
 
   void Check() const;  // throws dlslam::Error with the values
 };

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "dlslam/util/check.h"
+#include "dlslam/util/thread_priority.h"
 
 namespace dlslam {
 
@@ -12,6 +13,7 @@ void LocalMapperOptions::Check() const {
   DLSLAM_CHECK(min_found_ratio >= 0 && min_found_ratio <= 1);
   DLSLAM_CHECK(keyframe_redundancy > 0 && keyframe_redundancy <= 1);
   DLSLAM_CHECK_GT(close_depth, 0.0);
+  DLSLAM_CHECK(thread_nice >= 0 && thread_nice <= 19, "thread_nice {} must be in 0..19", thread_nice);
   triangulate.Check();
   fuse.Check();
   bundle.Check();
@@ -54,6 +56,7 @@ void LocalMapper::Stop() {
 }
 
 void LocalMapper::Run() {
+  LowerBackgroundPriority(options_.thread_nice, "local mapping");
   while (const std::optional<KeyFrameId> keyframe = queue_.Pop()) {
     try {
       ProcessAndHandOver(*keyframe);

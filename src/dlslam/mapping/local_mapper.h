@@ -42,6 +42,12 @@ struct LocalMapperOptions {
   FusionOptions fuse;
   bool bundle_adjustment = true;
   BundleAdjusterOptions bundle;
+  // How much lower than the caller's the thread's CPU priority is (nice
+  // increment, 0..19; util/thread_priority.h): with fewer free cores than
+  // busy threads the tracker then gets a core first. 10: Bonn full
+  // threaded, 4 interleaved pairs, real-time factor 1.38-1.41x vs 1.27-1.34x
+  // (with loop closing's), the same ATE (docs/speed.md).
+  int thread_nice = 10;
 
   void Check() const;
 };

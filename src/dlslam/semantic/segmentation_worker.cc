@@ -5,6 +5,7 @@
 
 #include "dlslam/semantic/label_maps.h"
 #include "dlslam/util/check.h"
+#include "dlslam/util/thread_priority.h"
 
 namespace dlslam::semantic {
 
@@ -15,6 +16,7 @@ void SegmentationWorkerOptions::Check() const {
                segment_every);
   DLSLAM_CHECK(propagation_grow_px >= 0 && propagation_grow_px <= 100,
                "propagation growth {} [px per frame] must be in 0..100", propagation_grow_px);
+  DLSLAM_CHECK(thread_nice >= 0 && thread_nice <= 19, "thread_nice {} must be in 0..19", thread_nice);
 }
 
 SegmentationWorker::SegmentationWorker(std::unique_ptr<Segmenter> segmenter,
@@ -95,6 +97,7 @@ SegmentationResult SegmentationWorker::Process(const Job& job) {
 }
 
 void SegmentationWorker::Run() {
+  LowerBackgroundPriority(options_.thread_nice, "segmentation");
   while (std::optional<Job> job = queue_.Pop()) {
     if (stopping_.load()) {
       job->promise.set_exception(

@@ -35,6 +35,12 @@ struct SegmentationWorkerOptions {
   // one [px / frame], for the motion in between (4: keeps the recall of
   // segmenting every frame at k = 2, 3 on DAVIS parkour, docs/semantic.md).
   int propagation_grow_px = 4;
+  // How much lower than the caller's the thread's CPU priority is (nice
+  // increment, 0..19; util/thread_priority.h): with fewer free cores than
+  // busy threads the tracker then gets a core first. 0: a frame that waits
+  // for its own masks waits longer behind a lower-priority network (Bonn
+  // full, asynchronous masks, nice 5 / 10: frame p95 57-66 vs 48-55 ms).
+  int thread_nice = 0;
 
   // Throws dlslam::Error naming the bad value.
   void Check() const;
