@@ -5,6 +5,8 @@ VOC teachers, whose 21 classes are mapped to ours by config/classes.json).
   /usr/bin/python3 training/evaluate.py --checkpoint training/checkpoints/mnv2_w05.pt
   /usr/bin/python3 training/evaluate.py --onnx models/x.onnx --size 257 337
   /usr/bin/python3 training/evaluate.py --onnx ../shared/data/models/deeplabv3-mnv2-voc/deeplabv3_mnv2_voc_385x513.onnx --voc --size 385 513
+  /usr/bin/python3 training/evaluate.py --onnx models/x.onnx --size 209 273 --sequence k5 --every 5
+      # person IoU on a sequence with ground-truth masks (mask.txt: dlslam composite or dlslam synth output)
 """
 import argparse
 import json
@@ -38,6 +40,45 @@ def run_eval(predict, rows, input_hw, class_names, log_every=0):
     s = ev.summary()
     s['score'] = selection_score(s)
     return s
+
+
+def read_list(path):
+    """TUM-style list file -> [(timestamp, relative path)]; '#' lines skipped."""
+    with open(path) as f:
+        rows = [line.split() for line in f if line.strip() and not line.startswith('#')]
+    for n, r in enumerate(rows):
+        if len(r) < 2:
+            raise SystemExit(f'{path}: expected "timestamp path" in entry {n + 1}, got {" ".join(r)!r}')
+    return [(float(r[0]), r[1]) for r in rows]
+
+
+def run_sequence_eval(predict, seq, input_hw, every):
+    """Person IoU (pooled and mean over frames with at least 1 % person) of a sequence whose mask.txt lists
+    ground-truth masks (non-zero = a moving person or object) beside rgb.txt, matched by timestamp."""
+    from datasets.seg_dataset import to_tensor
+    rgb, masks = read_list(os.path.join(seq, 'rgb.txt')), read_list(os.path.join(seq, 'mask.txt'))
+    by_time = {round(t, 6): m for t, m in masks}
+    inter = union = false_pos = pixels = 0
+    per_frame = []
+    for t, rel in rgb[::every]:
+        if round(t, 6) not in by_time:
+            continue
+        img = cv2.imread(os.path.join(seq, rel), cv2.IMREAD_COLOR)
+        gt = cv2.imread(os.path.join(seq, by_time[round(t, 6)]), cv2.IMREAD_UNCHANGED)
+        if img is None or gt is None:
+            raise SystemExit(f'{seq}: cannot read {rel} or its mask')
+        x = to_tensor(cv2.resize(img, (input_hw[1], input_hw[0]), interpolation=cv2.INTER_LINEAR))
+        pred = cv2.resize(predict(x[None]).astype(np.uint8), (img.shape[1], img.shape[0]),
+                          interpolation=cv2.INTER_NEAREST) == 1
+        gt = gt > 0
+        i, u = int((pred & gt).sum()), int((pred | gt).sum())
+        inter, union = inter + i, union + u
+        false_pos, pixels = false_pos + int((pred & ~gt).sum()), pixels + gt.size
+        if gt.mean() >= 0.01:
+            per_frame.append(i / u)
+    return {'frames': len(rgb[::every]), 'person_iou_pooled': inter / max(union, 1),
+            'person_iou_mean': float(np.mean(per_frame)) if per_frame else float('nan'),
+            'false_positive_share': false_pos / max(pixels, 1)}
 
 
 def torch_predictor(model):
@@ -85,6 +126,8 @@ def main():
     ap.add_argument('--voc', action='store_true', help='the ONNX model outputs the 21 VOC classes (teachers)')
     ap.add_argument('--size', type=int, nargs=2, default=(257, 337), metavar=('H', 'W'))
     ap.add_argument('--split', default='val')
+    ap.add_argument('--sequence', help='instead of the split: a sequence folder with mask.txt (ground-truth masks)')
+    ap.add_argument('--every', type=int, default=1, help='with --sequence: every k-th frame')
     ap.add_argument('--json', help='also write the summary here')
     args = ap.parse_args()
     torch.set_num_threads(2)
@@ -97,8 +140,13 @@ def main():
         predict = onnx_predictor(args.onnx, args.voc, classes)
     else:
         ap.error('give --checkpoint or --onnx')
-    s = run_eval(predict, read_split(args.split), tuple(args.size), names, log_every=100)
-    print(format_summary(s))
+    if args.sequence:
+        s = run_sequence_eval(predict, args.sequence, tuple(args.size), max(1, args.every))
+        print(f"{args.sequence}: " + '  '.join(f'{k} {v:.4f}' if isinstance(v, float) else f'{k} {v}'
+                                            for k, v in s.items()))
+    else:
+        s = run_eval(predict, read_split(args.split), tuple(args.size), names, log_every=100)
+        print(format_summary(s))
     if args.json:
         with open(args.json, 'w') as f:
             json.dump(s, f, indent=1)

@@ -21,11 +21,14 @@ TEACHER_PERSON_SOURCES = ('bonn',)
 # pasted sources: (scale of the person photo against the frame, how many people, placed anywhere in the
 # frame or centred when smaller than it)
 PASTED = {'paste': ((0.4, 1.1), lambda rng: 1 + int(rng.random() < 0.3), False),
-          'crowd': ((0.15, 0.6), lambda rng: int(rng.integers(2, 6)), True)}
+          'crowd': ((0.15, 0.6), lambda rng: int(rng.integers(2, 6)), True),
+          # one person so close that only part of them is in view (a head, a shoulder filling the
+          # frame's edge): what a crowd shows a handheld camera, and what the crowd source made rarer
+          'closeup': ((1.2, 3.0), lambda rng: 1, True)}
 
 
 def parse_mix(text):
-    """'human-seg=0.3,ccp=0.2,...' -> dict; sources: split sources plus 'paste' and 'crowd'."""
+    """'human-seg=0.3,ccp=0.2,...' -> dict; sources: split sources plus the pasted ones (PASTED)."""
     mix = {}
     for part in text.split(','):
         name, _, weight = part.partition('=')
