@@ -101,5 +101,40 @@ class ModelTest(unittest.TestCase):
         self.assertLess(float(np.abs(outs[False] - outs[True]).max()), 1e-5)
 
 
+class SequenceEvalTest(unittest.TestCase):
+    """evaluate.py --sequence: person IoU against a sequence's mask.txt, frames matched by timestamp."""
+
+    def test_iou_of_a_known_prediction(self):
+        import cv2
+        from evaluate import run_sequence_eval
+        with tempfile.TemporaryDirectory() as d:
+            os.makedirs(os.path.join(d, 'rgb'))
+            os.makedirs(os.path.join(d, 'mask'))
+            for i in range(2):
+                cv2.imwrite(os.path.join(d, 'rgb', f'{i}.png'), np.full((40, 40, 3), 90, np.uint8))
+                mask = np.zeros((40, 40), np.uint8)
+                mask[:, :10] = 129   # the left quarter is a person
+                cv2.imwrite(os.path.join(d, 'mask', f'{i}.png'), mask)
+            with open(os.path.join(d, 'rgb.txt'), 'w') as f:
+                f.write('# colour\n0.0 rgb/0.png\n0.033333 rgb/1.png\n')
+            with open(os.path.join(d, 'mask.txt'), 'w') as f:
+                f.write('0.0 mask/0.png\n0.033333 mask/1.png\n')
+
+            def left_half(x):   # person on the left half of the network input
+                label = np.zeros(x.shape[2:], np.int64)
+                label[:, :x.shape[3] // 2] = 1
+                return label
+            s = run_sequence_eval(left_half, d, (17, 17), every=1)
+            self.assertEqual(s['frames'], 2)
+            self.assertAlmostEqual(s['person_iou_pooled'], 0.5, delta=0.03)
+            self.assertAlmostEqual(s['person_iou_mean'], 0.5, delta=0.03)
+            self.assertAlmostEqual(s['false_positive_share'], 0.25, delta=0.03)
+            with open(os.path.join(d, 'mask.txt'), 'a') as f:
+                f.write('0.066666\n')
+            with self.assertRaises(SystemExit) as e:
+                run_sequence_eval(left_half, d, (17, 17), every=1)
+            self.assertIn('mask.txt', str(e.exception))
+
+
 if __name__ == '__main__':
     unittest.main()
