@@ -95,6 +95,7 @@ TEST_F(RunCliTest, EveryBadArgumentIsOneErrorLineAndExitStatusOne) {
       {RunArgs(Walk(), "--depth-factor 1e-300"), "--depth-factor: expected a number in [0.01, 100000]"},
       {RunArgs(Walk(), "--settings /dev/null"), "/dev/null: not a regular file"},
       {"bench --camera-hz inf", "--camera-hz: expected a number in [0.1, 1000], got 'inf'"},
+      {"bench --config /nonexistent/c.yaml", "/nonexistent/c.yaml: file not found"},
       {"synth --out '' --frames 3", "--out: empty value"},
       {"vocab train --images . --out v.dlv --threads 100000", "--threads: expected a whole number in 0..256"},
       {RunArgs(Walk(), "--view=70000"), "--view: expected a whole number in 1..65535, got '70000'"},
@@ -442,6 +443,17 @@ TEST_F(RunCliTest, BenchRunsWithAConfigFile) {
   EXPECT_EQ(j.at("options").at("dynamic").at("mode"), "orb");
   EXPECT_EQ(j.at("options").at("tracker").at("max_jump_speed"), 6.0);
   EXPECT_EQ(j.at("options").at("mapping").at("thread_nice"), 3);
+  // A bad value or a misspelled key: one error with file and line, exit 1.
+  std::ofstream(out_ / "bad_bench.yaml") << "mapping:\n  thread_nice: 25\n";
+  const CliRun bad = Cli("bench --sequence " + Quoted(Walk()) + " --modes orb --max-frames 5 --config " +
+                         Quoted(out_ / "bad_bench.yaml") + " --out " + Quoted(out_ / "bench_bad"));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_THAT(bad.output, AllOf(HasSubstr("thread_nice"), HasSubstr("25"))) << bad.output;
+  std::ofstream(out_ / "typo_bench.yaml") << "tracker:\n  max_jump_sped: 6\n";
+  const CliRun typo = Cli("bench --sequence " + Quoted(Walk()) + " --modes orb --max-frames 5 --config " +
+                          Quoted(out_ / "typo_bench.yaml") + " --out " + Quoted(out_ / "bench_typo"));
+  EXPECT_EQ(typo.exit_code, 1);
+  EXPECT_THAT(typo.output, HasSubstr("typo_bench.yaml:2: unknown key 'tracker.max_jump_sped'")) << typo.output;
 }
 
 TEST_F(RunCliTest, BenchRefusesUnknownModes) {

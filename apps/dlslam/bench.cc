@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "cli_checks.h"
+#include "dlslam/config/config_file.h"
 #include "dlslam/data/camera.h"
 #include "commands.h"
 #include "dlslam/io/file_util.h"
@@ -204,6 +205,11 @@ nlohmann::ordered_json Json(const BenchArgs& args, const fs::path& sequence, con
 void RunBench(const BenchArgs& args) {
   DLSLAM_CHECK(args.camera_hz > 0, "--camera-hz must be positive, got {}", args.camera_hz);
   const std::vector<std::string> modes = ParseModes(args.modes);
+  // A bad file fails here, before a preset is rendered (each run reads it again).
+  if (!args.config.empty()) {
+    config::RunOptions checked;
+    config::LoadConfig(args.config, &checked);
+  }
   fs::create_directories(args.out);
   fs::path sequence = args.sequence;
   if (sequence.empty()) {
@@ -283,10 +289,7 @@ void AddBenchCommand(CLI::App& app) {
   cmd->add_option("--camera", args->sequence_options.camera_preset, "Camera preset: fr1, fr2, fr3, bonn");
   cmd->add_option("--depth-factor", args->sequence_options.depth_factor, "Raw depth units per metre")->check(RealNumber(kMinDepthFactor, kMaxDepthFactor));
   cmd->callback([args, cmd] {
-    for (const CLI::Option* option : cmd->get_options()) {
-      if (option->count() == 0) continue;
-      for (const std::string& name : option->get_lnames()) args->given.insert("--" + name);
-    }
+    args->given = GivenFlags(*cmd);
     RunBench(*args);
   });
 }

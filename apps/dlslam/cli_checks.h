@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <set>
 #include <string>
 
 #include <fmt/format.h>
@@ -47,6 +48,17 @@ inline CLI::Validator RealNumber(double low, double high) {
         return {};
       },
       fmt::format("NUMBER in [{}, {}]", low, high));
+}
+
+// The long names ("--mode", ...) of the options given to `cmd` on the command
+// line: what overrides a --config file.
+inline std::set<std::string> GivenFlags(const CLI::App& cmd) {
+  std::set<std::string> given;
+  for (const CLI::Option* option : cmd.get_options()) {
+    if (option->count() == 0) continue;
+    for (const std::string& name : option->get_lnames()) given.insert("--" + name);
+  }
+  return given;
 }
 
 }  // namespace dlslam::app

@@ -422,10 +422,7 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("--depth-factor", args->sequence_options.depth_factor, "Raw depth units per metre")->check(RealNumber(kMinDepthFactor, kMaxDepthFactor));
   cmd->add_option("--associations", args->sequence_options.associations_file, "RGB-depth association file");
   cmd->callback([args, cmd] {
-    for (const CLI::Option* option : cmd->get_options()) {
-      if (option->count() == 0) continue;
-      for (const std::string& name : option->get_lnames()) args->given.insert("--" + name);
-    }
+    args->given = GivenFlags(*cmd);
     // CLI11 sets an integer flag it was not given to 0 (a count): without
     // this every run served a live view on a random port.
     if (args->given.count("--view") == 0) args->view_port = -1;

@@ -1,9 +1,10 @@
 #pragma once
-// Background threads (the network, local mapping, loop closing) run at a
-// lower CPU priority than the tracker, so that on a machine with fewer free
-// cores than busy threads the tracker gets a core the moment a frame comes
-// and the background work fills the time in between (on 2 cores the network
-// alone keeps one busy). Linux: a per-thread nice value; elsewhere a no-op.
+// Background threads (local mapping and loop closing by default; each
+// thread-owning module has a `thread_nice` option) run at a lower CPU
+// priority than the tracker, so that on a machine with fewer free cores than
+// busy threads the tracker gets a core the moment a frame comes and the
+// background work fills the time in between (on 2 cores the network alone
+// keeps one busy). Linux: a per-thread nice value; elsewhere a no-op.
 
 #include <string_view>
 
