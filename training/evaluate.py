@@ -20,7 +20,7 @@ import torch
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from datasets import load_classes  # noqa: E402
-from datasets.seg_dataset import EvalDataset  # noqa: E402
+from datasets.seg_dataset import EvalDataset, to_tensor  # noqa: E402
 from datasets.splits import read_split  # noqa: E402
 from metrics import SegEvaluator, selection_score  # noqa: E402
 
@@ -43,30 +43,44 @@ def run_eval(predict, rows, input_hw, class_names, log_every=0):
 
 
 def read_list(path):
-    """TUM-style list file -> [(timestamp, relative path)]; '#' lines skipped."""
-    with open(path) as f:
-        rows = [line.split() for line in f if line.strip() and not line.startswith('#')]
-    for n, r in enumerate(rows):
-        if len(r) < 2:
-            raise SystemExit(f'{path}: expected "timestamp path" in entry {n + 1}, got {" ".join(r)!r}')
-    return [(float(r[0]), r[1]) for r in rows]
+    """TUM-style list file -> [(timestamp, relative path)]; blank and '#' lines skipped. Exits naming file:line
+    for a missing file or a malformed line."""
+    try:
+        with open(path) as f:
+            lines = f.readlines()
+    except OSError as e:
+        raise SystemExit(f'{path}: cannot read: {e.strerror}')
+    rows = []
+    for number, line in enumerate(lines, 1):
+        fields = line.split()
+        if not fields or line.startswith('#'):
+            continue
+        try:
+            if len(fields) < 2:
+                raise ValueError
+            rows.append((float(fields[0]), fields[1]))
+        except ValueError:
+            raise SystemExit(f'{path}:{number}: expected "timestamp path", got {line.strip()[:60]!r}')
+    return rows
 
 
 def run_sequence_eval(predict, seq, input_hw, every):
     """Person IoU (pooled and mean over frames with at least 1 % person) of a sequence whose mask.txt lists
     ground-truth masks (non-zero = a moving person or object) beside rgb.txt, matched by timestamp."""
-    from datasets.seg_dataset import to_tensor
     rgb, masks = read_list(os.path.join(seq, 'rgb.txt')), read_list(os.path.join(seq, 'mask.txt'))
     by_time = {round(t, 6): m for t, m in masks}
     inter = union = false_pos = pixels = 0
     per_frame = []
+    frames = 0
     for t, rel in rgb[::every]:
         if round(t, 6) not in by_time:
-            continue
+            continue   # a frame without a mask: not evaluated
         img = cv2.imread(os.path.join(seq, rel), cv2.IMREAD_COLOR)
         gt = cv2.imread(os.path.join(seq, by_time[round(t, 6)]), cv2.IMREAD_UNCHANGED)
-        if img is None or gt is None:
-            raise SystemExit(f'{seq}: cannot read {rel} or its mask')
+        for name, loaded in ((rel, img), (by_time[round(t, 6)], gt)):
+            if loaded is None:
+                raise SystemExit(f'{os.path.join(seq, name)}: cannot be read as an image')
+        frames += 1
         x = to_tensor(cv2.resize(img, (input_hw[1], input_hw[0]), interpolation=cv2.INTER_LINEAR))
         pred = cv2.resize(predict(x[None]).astype(np.uint8), (img.shape[1], img.shape[0]),
                           interpolation=cv2.INTER_NEAREST) == 1
@@ -76,7 +90,9 @@ def run_sequence_eval(predict, seq, input_hw, every):
         false_pos, pixels = false_pos + int((pred & ~gt).sum()), pixels + gt.size
         if gt.mean() >= 0.01:
             per_frame.append(i / u)
-    return {'frames': len(rgb[::every]), 'person_iou_pooled': inter / max(union, 1),
+    if frames == 0:
+        raise SystemExit(f'{seq}: no frame of rgb.txt has a mask in mask.txt (timestamps must match)')
+    return {'frames': frames, 'person_iou_pooled': inter / max(union, 1),
             'person_iou_mean': float(np.mean(per_frame)) if per_frame else float('nan'),
             'false_positive_share': false_pos / max(pixels, 1)}
 

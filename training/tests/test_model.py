@@ -134,6 +134,16 @@ class SequenceEvalTest(unittest.TestCase):
             with self.assertRaises(SystemExit) as e:
                 run_sequence_eval(left_half, d, (17, 17), every=1)
             self.assertIn('mask.txt', str(e.exception))
+            self.assertIn('mask.txt:3:', str(e.exception))   # file and line
+            with open(os.path.join(d, 'mask.txt'), 'w') as f:
+                f.write('5.0 mask/0.png\n')                  # no timestamp in common
+            with self.assertRaises(SystemExit) as e:
+                run_sequence_eval(left_half, d, (17, 17), every=1)
+            self.assertIn('no frame', str(e.exception))
+            os.remove(os.path.join(d, 'mask.txt'))
+            with self.assertRaises(SystemExit) as e:
+                run_sequence_eval(left_half, d, (17, 17), every=1)
+            self.assertIn('mask.txt: cannot read', str(e.exception))
 
 
 if __name__ == '__main__':
