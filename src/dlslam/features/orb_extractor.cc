@@ -19,6 +19,7 @@ OrbExtractor::OrbExtractor(const OrbOptions& options, std::span<const PatternTes
   pyramid_.resize(n);
   smoothed_.resize(n);
   level_corners_.resize(n);
+  detected_.resize(n);
 }
 
 OrbFeatures OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask) {
@@ -43,8 +44,7 @@ void OrbExtractor::BuildPyramid(const cv::Mat& grey) {
 
 void OrbExtractor::DetectLevel(int level, const cv::Mat& exclusion_mask) {
   const auto l = static_cast<size_t>(level);
-  std::vector<FastCorner>& corners = level_corners_[l];
-  corners.clear();
+  detected_[l].clear();
   const cv::Mat& image = pyramid_[l];
   if (image.empty()) return;
   const int border = options_.edge_border;
@@ -73,11 +73,25 @@ void OrbExtractor::DetectLevel(int level, const cv::Mat& exclusion_mask) {
       }
     }
   }
-  DetectGridFast(image, area, fast, fast_scratch_, corners, skip_cells);
+  DetectGridFast(image, area, fast, fast_scratch_, detected_[l], skip_cells);
+}
 
+void OrbExtractor::SelectLevel(int level, const cv::Mat& exclusion_mask) {
+  const auto l = static_cast<size_t>(level);
+  std::vector<FastCorner>& corners = level_corners_[l];
+  corners = detected_[l];
+  const cv::Mat& image = pyramid_[l];
+  if (image.empty()) return;
   if (!exclusion_mask.empty()) {
-    std::erase_if(corners, [&](const FastCorner& c) { return exclusion_mask.at<uchar>(mask_y(c.y), mask_x(c.x)) != 0; });
+    const double scale = level_scales_[l];
+    std::erase_if(corners, [&](const FastCorner& c) {
+      const int x = std::min(static_cast<int>(std::lround(c.x * scale)), exclusion_mask.cols - 1);
+      const int y = std::min(static_cast<int>(std::lround(c.y * scale)), exclusion_mask.rows - 1);
+      return exclusion_mask.at<uchar>(y, x) != 0;
+    });
   }
+  const int border = options_.edge_border;
+  const cv::Rect area(border, border, image.cols - 2 * border, image.rows - 2 * border);
   DistributeQuadtree(area, level_targets_[l], corners);
 }
 
@@ -106,6 +120,18 @@ void OrbExtractor::SmoothLevel(size_t level) {
                   cv::Point(-1, -1), 0.0, cv::BORDER_REFLECT_101);
 }
 
+void OrbExtractor::SetExclusion(const cv::Mat& exclusion_mask) {
+  DLSLAM_CHECK(exclusion_mask.empty() || (exclusion_mask.type() == CV_8UC1 && exclusion_mask.size() == extracted_size_),
+               "exclusion mask must be CV_8UC1 {}x{}, got {} {}x{}", extracted_size_.width, extracted_size_.height,
+               cv::typeToString(exclusion_mask.type()), exclusion_mask.cols, exclusion_mask.rows);
+  if (exclusion_mask.empty()) {
+    excluded_.release();
+    return;
+  }
+  cv::compare(exclusion_mask, 0, excluded_, cv::CMP_NE);  // 255 where excluded
+  cv::integral(excluded_, excluded_integral_, CV_32S);
+}
+
 void OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask,
                            OrbFeatures& out) {
   if (!exclusion_mask.empty()) {
@@ -114,29 +140,49 @@ void OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask,
                  cv::typeToString(exclusion_mask.type()), exclusion_mask.cols,
                  exclusion_mask.rows);
   }
+  extracted_size_ = cv::Size();  // until the pyramid and corners are this image's
   PrepareImage(image);
-  if (!exclusion_mask.empty()) {
-    cv::compare(exclusion_mask, 0, excluded_, cv::CMP_NE);  // 255 where excluded
-    cv::integral(excluded_, excluded_integral_, CV_32S);
-  }
-
-  size_t total = 0;
+  extracted_size_ = image.size();
+  SetExclusion(exclusion_mask);
   for (int level = 0; level < options_.n_levels; ++level) {
     DetectLevel(level, exclusion_mask);
-    total += level_corners_[static_cast<size_t>(level)].size();
+    SelectLevel(level, exclusion_mask);
   }
+  detected_exclusion_ = excluded_.clone();
+  for (cv::Mat& level : smoothed_) level.release();
+  Describe(out);
+}
 
+OrbFeatures OrbExtractor::Reextract(const cv::Mat& exclusion_mask) {
+  DLSLAM_CHECK(!extracted_size_.empty(), "OrbExtractor::Reextract needs an Extract call first");
+  SetExclusion(exclusion_mask);
+  // The first extraction's corners hold every corner outside the new mask
+  // when that mask covers the first one: cells skipped then are inside it
+  // now, and FAST's per-cell threshold fallback counts corners before the
+  // mask. Otherwise the pyramid is still good; FAST is not.
+  const bool covers = detected_exclusion_.empty() ||
+                      (!excluded_.empty() && cv::countNonZero(detected_exclusion_ > excluded_) == 0);
+  for (int level = 0; level < options_.n_levels; ++level) {
+    if (!covers) DetectLevel(level, exclusion_mask);
+    SelectLevel(level, exclusion_mask);
+  }
+  if (!covers) detected_exclusion_ = excluded_.clone();
+  OrbFeatures out;
+  Describe(out);
+  return out;
+}
+
+void OrbExtractor::Describe(OrbFeatures& out) {
+  size_t total = 0;
+  for (const std::vector<FastCorner>& corners : level_corners_) total += corners.size();
   out.keypoints.clear();
   out.keypoints.reserve(total);
   out.descriptors.create(static_cast<int>(total), kDescriptorBytes, CV_8UC1);
   int row = 0;
   for (size_t level = 0; level < pyramid_.size(); ++level) {
     const std::vector<FastCorner>& corners = level_corners_[level];
-    if (corners.empty()) {
-      smoothed_[level].release();
-      continue;
-    }
-    SmoothLevel(level);
+    if (corners.empty()) continue;
+    if (smoothed_[level].empty()) SmoothLevel(level);  // kept for a Reextract
     const auto scale = static_cast<float>(level_scales_[level]);
     for (const FastCorner& c : corners) {
       const float angle = IntensityCentroidAngle(pyramid_[level], c.x, c.y);
@@ -150,6 +196,7 @@ void OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask,
 }
 
 OrbFeatures OrbExtractor::Describe(const cv::Mat& image, const std::vector<cv::KeyPoint>& keypoints) {
+  extracted_size_ = cv::Size();  // the pyramid is rebuilt without corners: no Reextract after this
   PrepareImage(image);
   for (cv::Mat& level : smoothed_) level.release();
   OrbFeatures out;

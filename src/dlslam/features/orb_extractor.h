@@ -45,6 +45,16 @@ class OrbExtractor {
   // The same, reusing `out`'s memory.
   void Extract(const cv::Mat& image, const cv::Mat& exclusion_mask, OrbFeatures& out);
 
+  // Keypoints of the last Extract call's image outside `exclusion_mask`
+  // (CV_8UC1, the image's size), as Extract(image, exclusion_mask) would give
+  // them: when the mask contains that call's exclusion mask (a removal grown
+  // after a first extraction), its FAST corners are filtered again, so only
+  // the spread over the image and the descriptors cost anything (about a
+  // third of Extract); otherwise FAST runs again on the kept pyramid. The
+  // image must not have been changed in between (a grey image's pyramid
+  // shares its pixels). Throws dlslam::Error before any Extract call.
+  OrbFeatures Reextract(const cv::Mat& exclusion_mask);
+
   // Descriptors of given keypoints (level = octave, position pt / scale
   // rounded, angle as given; e.g. another detector's) on this extractor's
   // smoothed pyramid of `image`. Keypoints whose level does not exist or whose
@@ -56,7 +66,8 @@ class OrbExtractor {
   const std::vector<double>& level_scales() const { return level_scales_; }
   // The grey pyramid and its Gaussian-smoothed twin (7x7, sigma 2) of the
   // last Extract call (level 0 shares the caller's grey image); levels too
-  // small for keypoints, and smoothed levels without keypoints, are empty.
+  // small for keypoints, and smoothed levels without keypoints, are empty
+  // (after a Reextract, a smoothed level may outlive its keypoints).
   const std::vector<cv::Mat>& pyramid() const { return pyramid_; }
   const std::vector<cv::Mat>& smoothed_pyramid() const { return smoothed_; }
 
@@ -64,7 +75,11 @@ class OrbExtractor {
   void PrepareImage(const cv::Mat& image);  // checks, grey, pyramid
   void BuildPyramid(const cv::Mat& grey);
   void SmoothLevel(size_t level);
+  void SetExclusion(const cv::Mat& exclusion_mask);  // checks; excluded_ and its integral
   void DetectLevel(int level, const cv::Mat& exclusion_mask);
+  // Keeps the level's corners outside the mask, spread by the quadtree.
+  void SelectLevel(int level, const cv::Mat& exclusion_mask);
+  void Describe(OrbFeatures& out);  // of the selected corners of every level
 
   OrbOptions options_;
   SteeredBrief brief_;
@@ -75,7 +90,12 @@ class OrbExtractor {
   // Scratch kept between calls.
   cv::Mat grey_;
   FastScratch fast_scratch_;
-  std::vector<std::vector<FastCorner>> level_corners_;
+  std::vector<std::vector<FastCorner>> level_corners_;  // selected: outside the mask, spread
+  // The last Extract's corners per level before the mask and the spread,
+  // and its exclusion (0/255, empty for none): what Reextract starts from.
+  std::vector<std::vector<FastCorner>> detected_;
+  cv::Mat detected_exclusion_;
+  cv::Size extracted_size_;  // empty before the first Extract
   cv::Mat excluded_, excluded_integral_;  // the exclusion mask as 0/255, and its integral image
 };
 

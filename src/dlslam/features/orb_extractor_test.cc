@@ -86,6 +86,54 @@ TEST(OrbExtractorTest, ExclusionMaskDropsKeypointsAndMovesTheBudget) {
   }
 }
 
+void ExpectSameFeatures(const OrbFeatures& a, const OrbFeatures& b) {
+  ASSERT_EQ(a.keypoints.size(), b.keypoints.size());
+  for (std::size_t i = 0; i < a.keypoints.size(); ++i) {
+    ASSERT_EQ(a.keypoints[i].pt, b.keypoints[i].pt) << i;
+    ASSERT_EQ(a.keypoints[i].octave, b.keypoints[i].octave) << i;
+    ASSERT_EQ(a.keypoints[i].angle, b.keypoints[i].angle) << i;
+  }
+  EXPECT_EQ(cv::norm(a.descriptors, b.descriptors, cv::NORM_HAMMING), 0.0);
+}
+
+TEST(OrbExtractorTest, ReextractGivesWhatAFreshExtractionOutsideTheGrownMaskGives) {
+  const cv::Mat image = testing::SyntheticTexture();
+  cv::Mat first(image.size(), CV_8UC1, cv::Scalar(0));
+  first(cv::Rect(100, 50, 200, 300)).setTo(255);
+  cv::Mat grown = first.clone();  // covers the first: its corners are filtered again
+  grown(cv::Rect(350, 200, 150, 200)).setTo(7);
+  cv::Mat other(image.size(), CV_8UC1, cv::Scalar(0));  // does not: FAST runs again
+  other(cv::Rect(0, 300, 640, 100)).setTo(255);
+  for (const cv::Mat& second : {grown, other, cv::Mat()}) {
+    OrbExtractor orb;
+    const OrbFeatures a = orb.Extract(image, first);
+    const OrbFeatures again = orb.Reextract(second);
+    OrbExtractor fresh;
+    ExpectSameFeatures(again, fresh.Extract(image, second));
+    if (!second.empty()) {  // the keypoints did move (to where the first mask allowed none or fewer)
+      EXPECT_TRUE(again.descriptors.rows != a.descriptors.rows ||
+                  cv::norm(again.descriptors, a.descriptors, cv::NORM_HAMMING) != 0.0);
+    }
+  }
+  // From a whole-image extraction too, and twice in a row.
+  OrbExtractor orb;
+  orb.Extract(image);
+  OrbExtractor fresh;
+  ExpectSameFeatures(orb.Reextract(first), fresh.Extract(image, first));
+  ExpectSameFeatures(orb.Reextract(grown), fresh.Extract(image, grown));
+}
+
+TEST(OrbExtractorTest, ReextractNeedsAnExtractionOfTheSameSize) {
+  OrbExtractor orb;
+  const cv::Mat image = testing::SyntheticTexture();
+  EXPECT_THROW(orb.Reextract(cv::Mat()), Error);
+  orb.Extract(image);
+  EXPECT_THROW(orb.Reextract(cv::Mat(100, 100, CV_8UC1, cv::Scalar(0))), Error);
+  EXPECT_THROW(orb.Reextract(cv::Mat(image.size(), CV_16UC1, cv::Scalar(0))), Error);
+  orb.Describe(image, {});
+  EXPECT_THROW(orb.Reextract(cv::Mat()), Error);  // Describe rebuilt the pyramid without corners
+}
+
 TEST(OrbExtractorTest, DescribeReproducesTheDescriptorsOfGivenKeypoints) {
   const cv::Mat image = testing::SyntheticTexture();
   OrbExtractor orb;

@@ -57,56 +57,62 @@ double HuberWeight(double chi2, double delta_sq) {
   return chi2 <= delta_sq ? 1.0 : std::sqrt(delta_sq / chi2);
 }
 
-double TotalCost(const CameraIntrinsics& camera, const SE3d& pose,
-                 const std::vector<PoseObservation>& observations, const std::vector<bool>& active,
-                 const PoseOptimizerOptions& options, bool robust) {
+// The robust cost at a pose and the Gauss-Newton system around it, in one
+// pass: the cost that accepts a step is then also the next iteration's
+// linearisation.
+struct NormalEquations {
+  Matrix6d H = Matrix6d::Zero();
+  Vector6d g = Vector6d::Zero();
   double cost = 0;
+};
+
+NormalEquations Linearize(const CameraIntrinsics& camera, const SE3d& pose,
+                          const std::vector<PoseObservation>& observations, const std::vector<bool>& active,
+                          const PoseOptimizerOptions& options, bool robust) {
+  NormalEquations eq;
   Linearization l;
   for (std::size_t i = 0; i < observations.size(); ++i) {
     if (!active[i]) continue;
-    if (!LinearizeObservation(camera, pose, observations[i], false, &l)) {
-      cost += 1e6;  // behind the camera: a heavy but finite penalty
+    if (!LinearizeObservation(camera, pose, observations[i], true, &l)) {
+      eq.cost += 1e6;  // behind the camera: a heavy but finite penalty
       continue;
     }
-    const double chi2 = Chi2(l, observations[i].information);
+    const double info = observations[i].information;
+    const double chi2 = Chi2(l, info);
     const double delta_sq = l.rows == 3 ? options.chi2_stereo : options.chi2_mono;
+    const bool inside = !robust || chi2 <= delta_sq;
     // Huber cost (times 2): chi2 inside, 2 delta sqrt(chi2) - delta^2 outside.
-    cost += (!robust || chi2 <= delta_sq) ? chi2 : 2 * std::sqrt(delta_sq * chi2) - delta_sq;
+    eq.cost += inside ? chi2 : 2 * std::sqrt(delta_sq * chi2) - delta_sq;
+    const double w = inside ? info : HuberWeight(chi2, delta_sq) * info;
+    eq.H.noalias() += w * l.jacobian.transpose() * l.jacobian;
+    eq.g.noalias() += w * l.jacobian.transpose() * l.residual;
   }
-  return cost;
+  return eq;
 }
 
 // Levenberg-Marquardt iterations over the active observations.
 SE3d RunIterations(const CameraIntrinsics& camera, SE3d pose, const std::vector<PoseObservation>& observations,
                    const std::vector<bool>& active, const PoseOptimizerOptions& options, bool robust) {
   double lambda = 1e-4;
-  double cost = TotalCost(camera, pose, observations, active, options, robust);
-  Linearization l;
+  NormalEquations eq = Linearize(camera, pose, observations, active, options, robust);
   for (int it = 0; it < options.iterations_per_round; ++it) {
-    Matrix6d H = Matrix6d::Zero();
-    Vector6d g = Vector6d::Zero();
-    for (std::size_t i = 0; i < observations.size(); ++i) {
-      if (!active[i] || !LinearizeObservation(camera, pose, observations[i], true, &l)) continue;
-      const double info = observations[i].information;
-      const double delta_sq = l.rows == 3 ? options.chi2_stereo : options.chi2_mono;
-      const double w = robust ? HuberWeight(Chi2(l, info), delta_sq) * info : info;
-      H.noalias() += w * l.jacobian.transpose() * l.jacobian;
-      g.noalias() += w * l.jacobian.transpose() * l.residual;
-    }
     bool improved = false;
     for (int attempt = 0; attempt < 10 && !improved; ++attempt) {
-      Matrix6d damped = H;
-      damped.diagonal() += lambda * H.diagonal().cwiseMax(1e-9);
-      const Vector6d step = damped.ldlt().solve(-g);
+      Matrix6d damped = eq.H;
+      damped.diagonal() += lambda * eq.H.diagonal().cwiseMax(1e-9);
+      const Vector6d step = damped.ldlt().solve(-eq.g);
       if (!step.allFinite()) break;
+      // At the minimum every step fails to lower the cost by rounding alone:
+      // a step this small means converged (taken unchecked: it cannot hurt),
+      // not "try a larger lambda".
+      if (step.norm() < options.min_step) return SE3d::Exp(step) * pose;
       const SE3d candidate = SE3d::Exp(step) * pose;
-      const double new_cost = TotalCost(camera, candidate, observations, active, options, robust);
-      if (new_cost < cost) {
+      NormalEquations at_candidate = Linearize(camera, candidate, observations, active, options, robust);
+      if (at_candidate.cost < eq.cost) {
         pose = candidate;
-        cost = new_cost;
+        eq = at_candidate;
         lambda = std::max(lambda / 10, 1e-10);
         improved = true;
-        if (step.norm() < options.min_step) return pose;
       } else {
         lambda *= 10;
       }

@@ -39,8 +39,10 @@ struct PoseOptimizerOptions {
   double chi2_stereo = 7.815;
   // Drop the Huber kernel in the last round, as ORB-SLAM does.
   bool robust_last_round = false;
-  // Stop iterating when the update is smaller than this [rad or m].
-  double min_step = 1e-10;
+  // Converged when the update is smaller than this [rad or m]: 1e-8 m is
+  // far below what pixels resolve, and without it every round spends its
+  // iterations retrying steps that only rounding keeps from helping.
+  double min_step = 1e-8;
 
   void Check() const;
 };

@@ -215,7 +215,10 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     // outside the removed regions when many were removed, else the others.
     if (static_cast<double>(removal.count) >= options_.reextract_removed_share * static_cast<double>(frame->size())) {
       watch = Stopwatch();
-      const features::OrbFeatures statics = static_extractor_.Extract(colour, removal.mask);
+      // After a first extraction with the same options only the spread and
+      // the descriptors are redone (OrbExtractor::Reextract).
+      const features::OrbFeatures statics = static_extracted_ ? static_extractor_.Reextract(removal.mask)
+                                                              : static_extractor_.Extract(colour, removal.mask);
       frame = std::make_shared<Frame>(
           Frame::Create(timestamp, statics.keypoints, statics.descriptors, depth, camera_, pyramid_));
       ++counts_.frames_reextracted;
@@ -299,10 +302,11 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
 }
 
 features::OrbFeatures SlamSystem::ExtractOutside(const cv::Mat& colour, const DynamicPrior& prior) {
+  static_extracted_ = false;
   if (!options_.extract_outside_prior || !prior.final || prior.removal.empty()) return extractor_.Extract(colour);
   ++counts_.frames_extracted_outside_prior;
-  const bool crowded = prior.removed_share() >= options_.static_orb_removed_share;
-  return (crowded ? static_extractor_ : extractor_).Extract(colour, prior.removal);
+  static_extracted_ = prior.removed_share() >= options_.static_orb_removed_share;
+  return (static_extracted_ ? static_extractor_ : extractor_).Extract(colour, prior.removal);
 }
 
 void SlamSystem::CheckColour(const cv::Mat& colour, double timestamp) const {

@@ -253,6 +253,7 @@ class SlamSystem {
   SystemOptions options_;
   features::OrbExtractor extractor_;
   features::OrbExtractor static_extractor_;  // re-extraction outside removed regions
+  bool static_extracted_ = false;  // this frame's first extraction was static_extractor_'s
   ScalePyramid pyramid_;
   StageTimings timings_;  // before mapper_: the mapping thread writes to it
   Map map_;
