@@ -130,7 +130,12 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
   }
   std::size_t level_end = queue.size();
   int level = 0;
-  for (std::size_t head = 0; head < queue.size(); ++head) {
+  // Dynamic pixels queued and not yet expanded: once none is left, the
+  // static fills can change nothing more in the result (a third to a half
+  // of the grid in a crowd is then never visited).
+  std::size_t dynamic_queued = 0;
+  for (const int index : queue) dynamic_queued += kind_of[index] == kDynamicOwner;
+  for (std::size_t head = 0; head < queue.size() && dynamic_queued > 0; ++head) {
     if (head == level_end) {
       ++level;
       if (!static_started && level >= head_start) {
@@ -143,6 +148,7 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
     const int v = index / cols;
     const int u = index - v * cols;
     const std::uint8_t kind = kind_of[index];
+    if (kind == kDynamicOwner) --dynamic_queued;
     const int seed_index = seed_of[static_cast<std::size_t>(index)];
     Seed& seed = seeds[static_cast<std::size_t>(seed_index)];
     if (seed.pixels >= max_pixels) continue;
@@ -166,6 +172,7 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
       kind_of[n] = kind;
       seed_of[static_cast<std::size_t>(n)] = seed_index;
       queue.push_back(n);
+      dynamic_queued += kind == kDynamicOwner;
       if (++seed.pixels >= max_pixels) break;
     }
   }
