@@ -88,9 +88,26 @@ cv::Mat StillSegments(const cv::Mat& prior, const GeometryResult& geometry, cons
   return Paint(s.labels, still);
 }
 
-// Movable segments the geometry shows moving; their count in `dropped`.
+// Moving or vanished points of the geometry on a 0/non-zero mask.
+int DynamicPointsOn(const cv::Mat& mask, const GeometryResult& geometry) {
+  int count = 0;
+  for (std::size_t i = 0; i < geometry.points.size() && i < geometry.labels.size(); ++i) {
+    const PointLabel label = geometry.labels[i];
+    if (label != PointLabel::kDynamic && label != PointLabel::kVanished) continue;
+    const int u = static_cast<int>(std::lround(geometry.points[i].pixel.x()));
+    const int v = static_cast<int>(std::lround(geometry.points[i].pixel.y()));
+    if (u >= 0 && v >= 0 && u < mask.cols && v < mask.rows && mask.at<std::uint8_t>(v, u) != 0) ++count;
+  }
+  return count;
+}
+
+// Movable segments the geometry shows moving (empty when none); their count
+// in `dropped`.
 cv::Mat MovingSegments(const cv::Mat& movable, const GeometryResult& geometry, const FusionOptions& options,
                        int* dropped) {
+  // No segment can hold more evidence than the whole mask: then the
+  // segments need not be found (most frames; ~0.6 ms at 640x480).
+  if (DynamicPointsOn(movable, geometry) < options.movable_dynamic_evidence) return {};
   const Segments s = CountEvidence(movable, geometry);
   std::vector<std::uint8_t> moving(s.dynamic_points.size(), 0);
   for (std::size_t i = 1; i < moving.size(); ++i) {
@@ -132,7 +149,8 @@ cv::Mat FuseDynamicMasks(const SemanticMasks& semantic, const GeometryResult& ge
                               options.policy == FusionPolicy::kGeometryConfirms);
   if (uses_movables) {
     int dropped = 0;
-    moving |= MovingSegments(semantic.movable, geometry, options, &dropped);
+    const cv::Mat moving_movables = MovingSegments(semantic.movable, geometry, options, &dropped);
+    if (!moving_movables.empty()) moving |= moving_movables;
     if (movable_segments_dropped != nullptr) *movable_segments_dropped = dropped;
   }
 
