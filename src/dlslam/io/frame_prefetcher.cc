@@ -1,13 +1,18 @@
 #include "dlslam/io/frame_prefetcher.h"
 
 #include "dlslam/util/check.h"
+#include "dlslam/util/thread_priority.h"
 
 namespace dlslam::io {
 
-FramePrefetcher::FramePrefetcher(const RgbdSequence& sequence, std::size_t count, std::size_t ahead)
+FramePrefetcher::FramePrefetcher(const RgbdSequence& sequence, std::size_t count, std::size_t ahead, int thread_nice)
     : sequence_(sequence), count_(count), queue_(ahead) {
   DLSLAM_CHECK_LE(count, sequence.size(), "FramePrefetcher: more frames asked than the sequence has");
-  reader_ = std::thread([this] { ReadAll(); });
+  DLSLAM_CHECK(thread_nice >= 0 && thread_nice <= 19, "FramePrefetcher: thread_nice {} outside [0, 19]", thread_nice);
+  reader_ = std::thread([this, thread_nice] {
+    LowerBackgroundPriority(thread_nice, "frame reader");
+    ReadAll();
+  });
 }
 
 FramePrefetcher::~FramePrefetcher() {

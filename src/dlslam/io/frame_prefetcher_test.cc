@@ -52,6 +52,10 @@ TEST(FramePrefetcher, StopsEarlyWhenDestroyedAndReadsOnlyTheFramesAsked) {
     ASSERT_TRUE(frames.Next().has_value());
   }  // destroyed with frames still to read: joins without hanging
   EXPECT_THROW(FramePrefetcher(sequence, 7), Error);
+  EXPECT_THROW(FramePrefetcher(sequence, 4, 2, 20), Error);  // nice beyond Linux's 19
+  EXPECT_THROW(FramePrefetcher(sequence, 4, 2, -1), Error);  // raising priority is not offered
+  FramePrefetcher unlowered(sequence, 4, 2, 0);
+  EXPECT_TRUE(unlowered.Next().has_value());
 }
 
 }  // namespace
