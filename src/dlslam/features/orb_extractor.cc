@@ -96,6 +96,11 @@ void OrbExtractor::SelectLevel(int level, const cv::Mat& exclusion_mask) {
 }
 
 void OrbExtractor::PrepareImage(const cv::Mat& image) {
+  if (borrowed_) {  // never write into another extractor's levels
+    for (cv::Mat& level : pyramid_) level.release();
+    for (cv::Mat& level : smoothed_) level.release();
+    borrowed_ = false;
+  }
   DLSLAM_CHECK(!image.empty(), "ORB extraction needs a non-empty image");
   DLSLAM_CHECK(image.depth() == CV_8U && (image.channels() == 1 || image.channels() == 3 ||
                                           image.channels() == 4),
@@ -143,14 +148,38 @@ void OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask,
   extracted_size_ = cv::Size();  // until the pyramid and corners are this image's
   PrepareImage(image);
   extracted_size_ = image.size();
+  for (cv::Mat& level : smoothed_) level.release();
+  DetectSelectDescribe(exclusion_mask, out);
+}
+
+void OrbExtractor::DetectSelectDescribe(const cv::Mat& exclusion_mask, OrbFeatures& out) {
   SetExclusion(exclusion_mask);
   for (int level = 0; level < options_.n_levels; ++level) {
     DetectLevel(level, exclusion_mask);
     SelectLevel(level, exclusion_mask);
   }
   detected_exclusion_ = excluded_.clone();
-  for (cv::Mat& level : smoothed_) level.release();
   Describe(out);
+}
+
+bool OrbExtractor::CanExtractOn(const OrbExtractor& source) const {
+  return source.options_.n_levels == options_.n_levels && source.options_.scale_factor == options_.scale_factor &&
+         source.options_.edge_border == options_.edge_border;
+}
+
+OrbFeatures OrbExtractor::ExtractOn(const OrbExtractor& source, const cv::Mat& exclusion_mask) {
+  DLSLAM_CHECK(CanExtractOn(source),
+               "OrbExtractor::ExtractOn: pyramids differ (levels {} / {}, scale {} / {}, edge border {} / {})",
+               options_.n_levels, source.options_.n_levels, options_.scale_factor, source.options_.scale_factor,
+               options_.edge_border, source.options_.edge_border);
+  DLSLAM_CHECK(!source.extracted_size_.empty(), "OrbExtractor::ExtractOn needs an Extract call of the source first");
+  pyramid_ = source.pyramid_;  // headers: the pixels are shared
+  smoothed_ = source.smoothed_;
+  borrowed_ = true;
+  extracted_size_ = source.extracted_size_;
+  OrbFeatures out;
+  DetectSelectDescribe(exclusion_mask, out);
+  return out;
 }
 
 OrbFeatures OrbExtractor::Reextract(const cv::Mat& exclusion_mask) {

@@ -55,6 +55,16 @@ class OrbExtractor {
   // shares its pixels). Throws dlslam::Error before any Extract call.
   OrbFeatures Reextract(const cv::Mat& exclusion_mask);
 
+  // Extract(image, exclusion_mask) for the image of `source`'s last Extract
+  // call, on `source`'s pyramid and smoothed levels instead of building them
+  // again (~1 ms at 640x480): e.g. a second extraction with other FAST
+  // thresholds. Needs CanExtractOn(source) and an Extract call of `source`
+  // first; `source` must not extract again until this extractor has
+  // extracted on its own (the levels are shared). Throws dlslam::Error otherwise.
+  OrbFeatures ExtractOn(const OrbExtractor& source, const cv::Mat& exclusion_mask);
+  // The pyramids agree: the same levels, scale factor and edge border.
+  bool CanExtractOn(const OrbExtractor& source) const;
+
   // Descriptors of given keypoints (level = octave, position pt / scale
   // rounded, angle as given; e.g. another detector's) on this extractor's
   // smoothed pyramid of `image`. Keypoints whose level does not exist or whose
@@ -76,6 +86,7 @@ class OrbExtractor {
   void BuildPyramid(const cv::Mat& grey);
   void SmoothLevel(size_t level);
   void SetExclusion(const cv::Mat& exclusion_mask);  // checks; excluded_ and its integral
+  void DetectSelectDescribe(const cv::Mat& exclusion_mask, OrbFeatures& out);  // on the current pyramid
   void DetectLevel(int level, const cv::Mat& exclusion_mask);
   // Keeps the level's corners outside the mask, spread by the quadtree.
   void SelectLevel(int level, const cv::Mat& exclusion_mask);
@@ -96,6 +107,7 @@ class OrbExtractor {
   std::vector<std::vector<FastCorner>> detected_;
   cv::Mat detected_exclusion_;
   cv::Size extracted_size_;  // empty before the first Extract
+  bool borrowed_ = false;   // pyramid_ and smoothed_ share another extractor's (ExtractOn)
   cv::Mat excluded_, excluded_integral_;  // the exclusion mask as 0/255, and its integral image
 };
 

@@ -123,6 +123,35 @@ TEST(OrbExtractorTest, ReextractGivesWhatAFreshExtractionOutsideTheGrownMaskGive
   ExpectSameFeatures(orb.Reextract(grown), fresh.Extract(image, grown));
 }
 
+TEST(OrbExtractorTest, ExtractOnAnotherExtractorsPyramidGivesWhatItsOwnExtractionGives) {
+  const cv::Mat image = testing::SyntheticTexture();
+  cv::Mat mask(image.size(), CV_8UC1, cv::Scalar(0));
+  mask(cv::Rect(100, 50, 200, 300)).setTo(255);
+  OrbOptions low;  // other FAST thresholds, the same pyramid
+  low.fast_threshold_initial = 8;
+  low.fast_threshold_min = 4;
+  OrbExtractor source, second(low), fresh(low);
+  ASSERT_TRUE(second.CanExtractOn(source));
+  EXPECT_THROW(second.ExtractOn(source, mask), Error);  // the source has not extracted yet
+  cv::Mat colour;
+  cv::cvtColor(image, colour, cv::COLOR_GRAY2BGR);
+  source.Extract(colour);
+  const OrbFeatures on = second.ExtractOn(source, mask);
+  ExpectSameFeatures(on, fresh.Extract(image, mask));
+  cv::Mat grown = mask.clone();
+  grown(cv::Rect(400, 100, 100, 100)).setTo(255);
+  ExpectSameFeatures(second.Reextract(grown), fresh.Extract(image, grown));
+  // Its own next extraction does not write into the source's levels.
+  const cv::Mat source_level1 = source.pyramid()[1].clone();
+  second.Extract(testing::SyntheticTexture(640, 480, 9));
+  EXPECT_EQ(cv::norm(source.pyramid()[1], source_level1, cv::NORM_INF), 0.0);
+  OrbOptions other_levels;
+  other_levels.n_levels = 6;
+  OrbExtractor different(other_levels);
+  EXPECT_FALSE(different.CanExtractOn(source));
+  EXPECT_THROW(different.ExtractOn(source, mask), Error);
+}
+
 TEST(OrbExtractorTest, ReextractNeedsAnExtractionOfTheSameSize) {
   OrbExtractor orb;
   const cv::Mat image = testing::SyntheticTexture();

@@ -217,8 +217,11 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
       watch = Stopwatch();
       // After a first extraction with the same options only the spread and
       // the descriptors are redone (OrbExtractor::Reextract).
-      const features::OrbFeatures statics = static_extracted_ ? static_extractor_.Reextract(removal.mask)
-                                                              : static_extractor_.Extract(colour, removal.mask);
+      // Else on the first extraction's pyramid, with static_orb's thresholds.
+      const features::OrbFeatures statics =
+          static_extracted_                          ? static_extractor_.Reextract(removal.mask)
+          : static_extractor_.CanExtractOn(extractor_) ? static_extractor_.ExtractOn(extractor_, removal.mask)
+                                                       : static_extractor_.Extract(colour, removal.mask);
       frame = std::make_shared<Frame>(
           Frame::Create(timestamp, statics.keypoints, statics.descriptors, depth, camera_, pyramid_));
       ++counts_.frames_reextracted;
