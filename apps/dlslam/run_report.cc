@@ -143,7 +143,8 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
                         {"points_triangulated", stats.mapping.points_triangulated},
                         {"points_fused", stats.mapping.points_fused},
                         {"keyframes_culled", stats.mapping.keyframes_culled},
-                        {"bundle_outliers", stats.mapping.bundle_outliers}};
+                        {"bundle_outliers", stats.mapping.bundle_outliers},
+                        {"bundles_yielded", stats.mapping.bundles_yielded}};
   j["loop_closing"] = LoopReport(stats.loop);
   j["timing_ms"] = TimingsReport(stats.timing_ms);
   j["dynamic"] = DynamicReport(stats);

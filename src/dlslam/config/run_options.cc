@@ -158,6 +158,7 @@ void Visit(LocalMapperOptions& o, V& v) {
   Section(v, "match", "projection matching", o.fuse.match);
   v.End();
   v.Value("bundle_adjustment", o.bundle_adjustment, {"", "local bundle adjustment per keyframe"});
+  v.Value("max_bundle_yields_in_a_row", o.max_bundle_yields_in_a_row, {"", "threaded: local bundle adjustments stopped for a queued keyframe, at most this many in a row (0 = never)"});
   Section(v, "bundle", "local bundle adjustment", o.bundle);
 }
 

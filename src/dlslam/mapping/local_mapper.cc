@@ -14,6 +14,7 @@ void LocalMapperOptions::Check() const {
   DLSLAM_CHECK(keyframe_redundancy > 0 && keyframe_redundancy <= 1);
   DLSLAM_CHECK_GT(close_depth, 0.0);
   DLSLAM_CHECK(thread_nice >= 0 && thread_nice <= 19, "thread_nice {} must be in 0..19", thread_nice);
+  DLSLAM_CHECK(max_bundle_yields_in_a_row >= 0, "max_bundle_yields_in_a_row {} must be >= 0", max_bundle_yields_in_a_row);
   triangulate.Check();
   fuse.Check();
   bundle.Check();
@@ -29,6 +30,7 @@ LocalMapper::~LocalMapper() { Stop(); }
 
 void LocalMapper::Start() {
   DLSLAM_CHECK(!thread_.joinable(), "local mapping already started");
+  threaded_ = true;  // before the thread: it reads it
   thread_ = std::thread([this] { Run(); });
 }
 
@@ -38,6 +40,7 @@ void LocalMapper::Enqueue(KeyFrameId keyframe) {
     return;
   }
   queue_.Push(keyframe);
+  keyframe_queued_ = true;
 }
 
 PauseGate::Hold LocalMapper::Pause() { return pause_gate_.Pause(); }
@@ -97,9 +100,16 @@ void LocalMapper::Process(KeyFrameId keyframe) {
   if (options_.bundle_adjustment) {
     Stopwatch ba;
     LocalBundle bundle = map_->BuildLocalBundle(keyframe);
-    const BundleSummary summary = SolveBundle(&bundle.problem, options_.bundle);
+    BundleAdjusterOptions bundle_options = options_.bundle;
+    if (threaded_ && bundles_yielded_in_a_row_ < options_.max_bundle_yields_in_a_row) {
+      keyframe_queued_ = queue_.size() > 0;
+      bundle_options.abort = &keyframe_queued_;
+    }
+    const BundleSummary summary = SolveBundle(&bundle.problem, bundle_options);
     map_->ApplyLocalBundle(bundle, summary.outlier);
     step.bundle_outliers = summary.outliers;
+    step.bundles_yielded = summary.aborted ? 1 : 0;
+    bundles_yielded_in_a_row_ = summary.aborted ? bundles_yielded_in_a_row_ + 1 : 0;
     if (timings_) timings_->Add("local_bundle_adjustment", ba.ElapsedMs());
   }
   const std::vector<KeyFrameId> culled =
@@ -117,6 +127,7 @@ void LocalMapper::Process(KeyFrameId keyframe) {
   stats_.points_fused += step.points_fused;
   stats_.keyframes_culled += step.keyframes_culled;
   stats_.bundle_outliers += step.bundle_outliers;
+  stats_.bundles_yielded += step.bundles_yielded;
 }
 
 }  // namespace dlslam

@@ -42,6 +42,14 @@ struct LocalMapperOptions {
   FusionOptions fuse;
   bool bundle_adjustment = true;
   BundleAdjusterOptions bundle;
+  // Threaded: a local bundle adjustment stops at its next iteration when a
+  // new keyframe is queued (ORB-SLAM's behaviour), so the new keyframe's
+  // points reach tracking sooner; what it refined so far is kept. At most
+  // this many in a row (a starved mapper, keyframes always queued, would
+  // refine nothing otherwise); 0 = never. Bonn full threaded, interleaved:
+  // unlimited 0.0149-0.0170 m in 7 runs, once in a row 0.0154-0.0183 m in 6,
+  // never 0.0148-0.0203 m (median 0.0176) in 21; the same pace (docs/speed.md).
+  int max_bundle_yields_in_a_row = 3;
   // How much lower than the caller's the thread's CPU priority is (nice
   // increment, 0..19; util/thread_priority.h): with fewer free cores than
   // busy threads the tracker then gets a core first. 10: Bonn full
@@ -59,6 +67,7 @@ struct LocalMappingStats {
   int points_fused = 0;  // observations added or points merged by fusion
   int keyframes_culled = 0;
   int bundle_outliers = 0;
+  int bundles_yielded = 0;  // local bundle adjustments stopped early for a queued keyframe
 };
 
 // Called on the mapping thread for each keyframe local mapping takes on and
@@ -107,6 +116,9 @@ class LocalMapper {
   StageTimings* timings_;
   KeyFrameHooks hooks_;
   BoundedQueue<KeyFrameId> queue_;
+  std::atomic<bool> keyframe_queued_{false};  // set by Enqueue, cleared before each bundle adjustment
+  bool threaded_ = false;                      // Start was called
+  int bundles_yielded_in_a_row_ = 0;           // the mapper thread's own
   std::thread thread_;
   PauseGate pause_gate_;  // a keyframe's processing is one step
   mutable std::mutex stats_mutex_;

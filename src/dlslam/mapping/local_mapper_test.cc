@@ -76,6 +76,37 @@ TEST(LocalMapper, ThreadedRunTracksAsWell) {
   EXPECT_GT(r.stats.keyframes_processed, 3);
 }
 
+// Keyframes queued while mapping is held, then let go: each bundle
+// adjustment with another keyframe behind it yields, unless told not to.
+int BundlesYieldedAfterABacklog(int max_in_a_row) {
+  auto scene = testing::LandmarkScene::Room(6000, 8);
+  Map map;
+  Tracker tracker(TrackerOptions{}, &map);
+  LocalMapperOptions options;
+  options.max_bundle_yields_in_a_row = max_in_a_row;
+  LocalMapper mapper(options, &map);
+  mapper.Start();
+  {
+    const PauseGate::Hold hold = mapper.Pause();
+    for (int i = 0; i < 300 && mapper.backlog() < 4; ++i) {
+      const TrackingResult r = tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 500 + i, 1.0));
+      if (r.new_keyframe) mapper.Enqueue(r.reference_keyframe);
+    }
+    EXPECT_GE(mapper.backlog(), 4u);
+  }
+  mapper.Stop();
+  return mapper.stats().bundles_yielded;
+}
+
+TEST(LocalMapper, BundleAdjustmentYieldsToAQueuedKeyFrame) {
+  // Of 4 queued, the first 3 find another behind them: all 3 yield, or
+  // the 1st and 3rd when only one in a row may.
+  EXPECT_EQ(BundlesYieldedAfterABacklog(3), 3);
+  EXPECT_EQ(BundlesYieldedAfterABacklog(1), 2);
+  EXPECT_EQ(BundlesYieldedAfterABacklog(0), 0);
+  EXPECT_EQ(RunSequence(false, true, 200).stats.bundles_yielded, 0);  // sequential: never
+}
+
 TEST(LocalMapper, TriangulatesWhereDepthEnds) {
   // A 4.5 m sensor range: the far wall (5 m) has no depth; its points come
   // from triangulation. Fewer points with depth make every pose ~1 cm worse
