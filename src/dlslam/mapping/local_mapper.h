@@ -47,8 +47,9 @@ struct LocalMapperOptions {
   // points reach tracking sooner; what it refined so far is kept. At most
   // this many in a row (a starved mapper, keyframes always queued, would
   // refine nothing otherwise); 0 = never. Bonn full threaded, interleaved:
-  // unlimited 0.0149-0.0170 m in 7 runs, once in a row 0.0154-0.0183 m in 6,
-  // never 0.0148-0.0203 m (median 0.0176) in 21; the same pace (docs/speed.md).
+  // 3 in a row 0.0146-0.0186 m (median 0.0160) in 12 runs, unlimited
+  // 0.0149-0.0170 m in 7, once in a row 0.0154-0.0183 m in 6, never
+  // 0.0148-0.0203 m (median 0.0176) in 25; the same pace (docs/speed.md).
   int max_bundle_yields_in_a_row = 3;
   // How much lower than the caller's the thread's CPU priority is (nice
   // increment, 0..19; util/thread_priority.h): with fewer free cores than
