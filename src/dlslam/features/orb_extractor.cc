@@ -10,6 +10,21 @@
 
 namespace dlslam::features {
 
+namespace {
+
+// The level-0 (exclusion mask) coordinate of a level's pixel coordinate.
+int MaskCoordinate(int level_coordinate, double scale, int mask_size) {
+  return std::min(static_cast<int>(std::lround(level_coordinate * scale)), mask_size - 1);
+}
+
+void CheckExclusionMask(const cv::Mat& mask, cv::Size size) {
+  DLSLAM_CHECK(mask.empty() || (mask.type() == CV_8UC1 && mask.size() == size),
+               "exclusion mask must be CV_8UC1 {}x{}, got {} {}x{}", size.width, size.height,
+               cv::typeToString(mask.type()), mask.cols, mask.rows);
+}
+
+}  // namespace
+
 OrbExtractor::OrbExtractor(const OrbOptions& options, std::span<const PatternTest> pattern)
     : options_((options.Check(), options)), brief_(pattern) {
   level_scales_ = LevelScales(options_);
@@ -53,8 +68,8 @@ void OrbExtractor::DetectLevel(int level, const cv::Mat& exclusion_mask) {
                             options_.cell_size};
   const double scale = level_scales_[l];
   // A level pixel looks the (level-0) exclusion mask up here.
-  const auto mask_x = [&](int x) { return std::min(static_cast<int>(std::lround(x * scale)), exclusion_mask.cols - 1); };
-  const auto mask_y = [&](int y) { return std::min(static_cast<int>(std::lround(y * scale)), exclusion_mask.rows - 1); };
+  const auto mask_x = [&](int x) { return MaskCoordinate(x, scale, exclusion_mask.cols); };
+  const auto mask_y = [&](int y) { return MaskCoordinate(y, scale, exclusion_mask.rows); };
   // Cells wholly inside the exclusion mask are not searched: in a crowd
   // that is a third of the image or more.
   std::vector<bool> skip_cells;
@@ -85,9 +100,8 @@ void OrbExtractor::SelectLevel(int level, const cv::Mat& exclusion_mask) {
   if (!exclusion_mask.empty()) {
     const double scale = level_scales_[l];
     std::erase_if(corners, [&](const FastCorner& c) {
-      const int x = std::min(static_cast<int>(std::lround(c.x * scale)), exclusion_mask.cols - 1);
-      const int y = std::min(static_cast<int>(std::lround(c.y * scale)), exclusion_mask.rows - 1);
-      return exclusion_mask.at<uchar>(y, x) != 0;
+      return exclusion_mask.at<uchar>(MaskCoordinate(c.y, scale, exclusion_mask.rows),
+                                      MaskCoordinate(c.x, scale, exclusion_mask.cols)) != 0;
     });
   }
   const int border = options_.edge_border;
@@ -126,9 +140,7 @@ void OrbExtractor::SmoothLevel(size_t level) {
 }
 
 void OrbExtractor::SetExclusion(const cv::Mat& exclusion_mask) {
-  DLSLAM_CHECK(exclusion_mask.empty() || (exclusion_mask.type() == CV_8UC1 && exclusion_mask.size() == extracted_size_),
-               "exclusion mask must be CV_8UC1 {}x{}, got {} {}x{}", extracted_size_.width, extracted_size_.height,
-               cv::typeToString(exclusion_mask.type()), exclusion_mask.cols, exclusion_mask.rows);
+  CheckExclusionMask(exclusion_mask, extracted_size_);
   if (exclusion_mask.empty()) {
     excluded_.release();
     return;
@@ -139,12 +151,7 @@ void OrbExtractor::SetExclusion(const cv::Mat& exclusion_mask) {
 
 void OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask,
                            OrbFeatures& out) {
-  if (!exclusion_mask.empty()) {
-    DLSLAM_CHECK(exclusion_mask.type() == CV_8UC1 && exclusion_mask.size() == image.size(),
-                 "exclusion mask must be CV_8UC1 {}x{}, got {} {}x{}", image.cols, image.rows,
-                 cv::typeToString(exclusion_mask.type()), exclusion_mask.cols,
-                 exclusion_mask.rows);
-  }
+  CheckExclusionMask(exclusion_mask, image.size());  // before anything is changed
   extracted_size_ = cv::Size();  // until the pyramid and corners are this image's
   PrepareImage(image);
   extracted_size_ = image.size();

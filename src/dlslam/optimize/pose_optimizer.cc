@@ -105,8 +105,8 @@ SE3d RunIterations(const CameraIntrinsics& camera, SE3d pose, const std::vector<
       // At the minimum every step fails to lower the cost by rounding alone:
       // a step this small means converged (taken unchecked: it cannot hurt),
       // not "try a larger lambda".
-      if (step.norm() < options.min_step) return SE3d::Exp(step) * pose;
       const SE3d candidate = SE3d::Exp(step) * pose;
+      if (step.norm() < options.min_step) return candidate;
       NormalEquations at_candidate = Linearize(camera, candidate, observations, active, options, robust);
       if (at_candidate.cost < eq.cost) {
         pose = candidate;

@@ -194,7 +194,8 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   }
   const DynamicPrior prior = dynamic_.TakePrior(inputs);
   Stopwatch watch;
-  const features::OrbFeatures features = ExtractOutside(colour, prior);
+  const features::OrbExtractor* first = nullptr;
+  const features::OrbFeatures features = ExtractOutside(colour, prior, &first);
   timings_.Add("orb_extraction", watch.ElapsedMs());
   auto frame = std::make_shared<Frame>(
       Frame::Create(timestamp, features.keypoints, features.descriptors, depth, camera_, pyramid_));
@@ -216,12 +217,12 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     if (static_cast<double>(removal.count) >= options_.reextract_removed_share * static_cast<double>(frame->size())) {
       watch = Stopwatch();
       // After a first extraction with the same options only the spread and
-      // the descriptors are redone (OrbExtractor::Reextract).
-      // Else on the first extraction's pyramid, with static_orb's thresholds.
+      // the descriptors are redone (OrbExtractor::Reextract); else it runs on
+      // the first extraction's pyramid, with static_orb's thresholds.
       const features::OrbFeatures statics =
-          static_extracted_                          ? static_extractor_.Reextract(removal.mask)
-          : static_extractor_.CanExtractOn(extractor_) ? static_extractor_.ExtractOn(extractor_, removal.mask)
-                                                       : static_extractor_.Extract(colour, removal.mask);
+          first == &static_extractor_              ? static_extractor_.Reextract(removal.mask)
+          : static_extractor_.CanExtractOn(*first) ? static_extractor_.ExtractOn(*first, removal.mask)
+                                                   : static_extractor_.Extract(colour, removal.mask);
       frame = std::make_shared<Frame>(
           Frame::Create(timestamp, statics.keypoints, statics.descriptors, depth, camera_, pyramid_));
       ++counts_.frames_reextracted;
@@ -304,12 +305,15 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   return result;
 }
 
-features::OrbFeatures SlamSystem::ExtractOutside(const cv::Mat& colour, const DynamicPrior& prior) {
-  static_extracted_ = false;
+features::OrbFeatures SlamSystem::ExtractOutside(const cv::Mat& colour, const DynamicPrior& prior,
+                                                 const features::OrbExtractor** used) {
+  *used = &extractor_;
   if (!options_.extract_outside_prior || !prior.final || prior.removal.empty()) return extractor_.Extract(colour);
   ++counts_.frames_extracted_outside_prior;
-  static_extracted_ = prior.removed_share() >= options_.static_orb_removed_share;
-  return (static_extracted_ ? static_extractor_ : extractor_).Extract(colour, prior.removal);
+  const bool crowded = prior.removed_share() >= options_.static_orb_removed_share;
+  features::OrbExtractor& extractor = crowded ? static_extractor_ : extractor_;
+  *used = &extractor;
+  return extractor.Extract(colour, prior.removal);
 }
 
 void SlamSystem::CheckColour(const cv::Mat& colour, double timestamp) const {

@@ -253,7 +253,6 @@ class SlamSystem {
   SystemOptions options_;
   features::OrbExtractor extractor_;
   features::OrbExtractor static_extractor_;  // re-extraction outside removed regions
-  bool static_extracted_ = false;  // this frame's first extraction was static_extractor_'s
   ScalePyramid pyramid_;
   StageTimings timings_;  // before mapper_: the mapping thread writes to it
   Map map_;
@@ -283,8 +282,10 @@ class SlamSystem {
   // Throws dlslam::Error for an empty colour image or one of another size than the camera's.
   void CheckColour(const cv::Mat& colour, double timestamp) const;
   // The frame's ORB features, outside what the prior removes for good
-  // (SystemOptions::extract_outside_prior).
-  features::OrbFeatures ExtractOutside(const cv::Mat& colour, const DynamicPrior& prior);
+  // (SystemOptions::extract_outside_prior); `*used`: the extractor that ran
+  // (a re-extraction reuses its work).
+  features::OrbFeatures ExtractOutside(const cv::Mat& colour, const DynamicPrior& prior,
+                                       const features::OrbExtractor** used);
   // Keyframes' images for the dense map (options.keep_keyframe_images).
   struct KeyFrameImages {
     double timestamp = 0.0;
