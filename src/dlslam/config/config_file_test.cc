@@ -115,6 +115,8 @@ TEST_F(ConfigFileTest, MistakesAreErrorsWithTheirLine) {
               HasSubstr("c.yaml:2: tracker.new_map_after_lost_frames: out of range"));
   EXPECT_THAT(Error("merge_every_frames: 0\n"), HasSubstr("c.yaml:1: merge_every_frames: out of range"));
   EXPECT_THAT(Error("merge_agreement_deg: -3\n"), HasSubstr("c.yaml:1: merge_agreement_deg: out of range"));
+  EXPECT_THAT(Error("mapping:\n  max_bundle_yields_in_a_row: -1\n"),
+              HasSubstr("c.yaml:2: mapping.max_bundle_yields_in_a_row: out of range"));
   // Geometry overruled, keyframes held for their masks.
   EXPECT_THAT(Error("dynamic:\n  max_geometry_share_of_prior_static: 0\n"),
               HasSubstr("c.yaml:2: dynamic.max_geometry_share_of_prior_static: out of range"));
