@@ -42,6 +42,8 @@ void Visit(features::OrbOptions& o, V& v) {
   v.Value("fast_threshold_min", o.fast_threshold_min, {"grey levels", "FAST threshold where the first found nothing"});
   v.Value("cell_size", o.cell_size, {"px", "side of the grid cells FAST thresholds are chosen for"});
   v.Value("edge_border", o.edge_border, {"px", "no keypoint closer than this to a level's edge"});
+  v.Value("exclusion_radius", o.exclusion_radius,
+          {"px at the level", "no keypoint this close to an excluded (dynamic) pixel: FAST's circle must be static"});
 }
 
 void Visit(PoseOptimizerOptions& o, V& v) {

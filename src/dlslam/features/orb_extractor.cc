@@ -2,6 +2,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "dlslam/features/orientation.h"
@@ -99,9 +100,17 @@ void OrbExtractor::SelectLevel(int level, const cv::Mat& exclusion_mask) {
   if (image.empty()) return;
   if (!exclusion_mask.empty()) {
     const double scale = level_scales_[l];
+    // The level's box of +-exclusion_radius px, in level-0 mask pixels.
+    const int reach = static_cast<int>(std::ceil(options_.exclusion_radius * scale));
     std::erase_if(corners, [&](const FastCorner& c) {
-      return exclusion_mask.at<uchar>(MaskCoordinate(c.y, scale, exclusion_mask.rows),
-                                      MaskCoordinate(c.x, scale, exclusion_mask.cols)) != 0;
+      const int x = MaskCoordinate(c.x, scale, exclusion_mask.cols);
+      const int y = MaskCoordinate(c.y, scale, exclusion_mask.rows);
+      if (reach == 0) return exclusion_mask.at<uchar>(y, x) != 0;
+      const int x0 = std::max(x - reach, 0), x1 = std::min(x + reach + 1, exclusion_mask.cols);
+      const int y0 = std::max(y - reach, 0), y1 = std::min(y + reach + 1, exclusion_mask.rows);
+      return excluded_integral_.at<int>(y1, x1) - excluded_integral_.at<int>(y0, x1) -
+                 excluded_integral_.at<int>(y1, x0) + excluded_integral_.at<int>(y0, x0) !=
+             0;
     });
   }
   const int border = options_.edge_border;

@@ -86,6 +86,56 @@ TEST(OrbExtractorTest, ExclusionMaskDropsKeypointsAndMovesTheBudget) {
   }
 }
 
+// The distance [px, level 0] from `k` to the nearest non-zero pixel of
+// `mask` (Chebyshev), capped at `cap`.
+int DistanceToMask(const cv::Mat& mask, const cv::KeyPoint& k, int cap) {
+  const int x = cvRound(k.pt.x), y = cvRound(k.pt.y);
+  for (int d = 0; d <= cap; ++d) {
+    for (int yy = std::max(y - d, 0); yy <= std::min(y + d, mask.rows - 1); ++yy) {
+      for (int xx = std::max(x - d, 0); xx <= std::min(x + d, mask.cols - 1); ++xx) {
+        if (mask.at<uchar>(yy, xx) != 0) return d;
+      }
+    }
+  }
+  return cap + 1;
+}
+
+TEST(OrbExtractorTest, NoKeypointSeesAnExcludedPixelWithFast) {
+  // Keypoints next to a person's outline may be corners of the outline: the
+  // pixels FAST compared (radius exclusion_radius at the keypoint's level)
+  // must all lie outside the mask.
+  for (const auto& [name, image] : Images()) {
+    cv::Mat mask(image.size(), CV_8UC1, cv::Scalar(0));
+    cv::ellipse(mask, {250, 260}, {90, 200}, 0, 0, 360, cv::Scalar(255), cv::FILLED);  // a person
+    mask(cv::Rect(450, 100, 60, 300)).setTo(255);                                        // another
+    OrbOptions options;
+    options.exclusion_radius = 3;
+    OrbExtractor orb(options);
+    const OrbFeatures f = orb.Extract(image, mask);
+    ASSERT_GE(f.keypoints.size(), 700u) << name;
+    int closest_margin = 1000;  // the smallest distance left over the reach, in px
+    for (const cv::KeyPoint& k : f.keypoints) {
+      // The level's +-3 px box reaches ceil(3 * scale) px at level 0.
+      const int reach = static_cast<int>(std::ceil(options.exclusion_radius * std::pow(1.2, k.octave)));
+      const int d = DistanceToMask(mask, k, reach + 2);
+      ASSERT_GT(d, reach) << name << " keypoint " << k.pt << " level " << k.octave;
+      closest_margin = std::min(closest_margin, d - reach);
+    }
+    EXPECT_LE(closest_margin, 2) << name << ": the mask's outline has keypoints right outside the reach";
+    // Radius 0: only the keypoint's own pixel counts, some sit right at the outline.
+    options.exclusion_radius = 0;
+    OrbExtractor centre_only(options);
+    const OrbFeatures g = centre_only.Extract(image, mask);
+    int at_outline = 0;
+    for (const cv::KeyPoint& k : g.keypoints) {
+      const int d = DistanceToMask(mask, k, 3);
+      ASSERT_GT(d, 0) << name;
+      at_outline += d <= 3;
+    }
+    EXPECT_GT(at_outline, 0) << name;
+  }
+}
+
 void ExpectSameFeatures(const OrbFeatures& a, const OrbFeatures& b) {
   ASSERT_EQ(a.keypoints.size(), b.keypoints.size());
   for (std::size_t i = 0; i < a.keypoints.size(); ++i) {
@@ -220,6 +270,8 @@ TEST(OrbOptionsTest, CheckNamesTheBadField) {
   expect_bad([](OrbOptions& o) { o.fast_threshold_min = 21; }, "fast_threshold_min");
   expect_bad([](OrbOptions& o) { o.cell_size = 4; }, "cell_size");
   expect_bad([](OrbOptions& o) { o.edge_border = 15; }, "edge_border");
+  expect_bad([](OrbOptions& o) { o.exclusion_radius = -1; }, "exclusion_radius");
+  expect_bad([](OrbOptions& o) { o.exclusion_radius = 16; }, "exclusion_radius");
   OrbOptions bad;
   bad.n_levels = -1;
   EXPECT_THROW(OrbExtractor{bad}, Error);

@@ -22,6 +22,8 @@ void OrbOptions::Check() const {
                cell_size);
   DLSLAM_CHECK(edge_border >= kPatchRadius + 1 && edge_border <= 100,
                "OrbOptions::edge_border {} outside [{}, 100]", edge_border, kPatchRadius + 1);
+  DLSLAM_CHECK(exclusion_radius >= 0 && exclusion_radius <= kPatchRadius,
+               "OrbOptions::exclusion_radius {} outside [0, {}]", exclusion_radius, kPatchRadius);
 }
 
 std::vector<double> LevelScales(const OrbOptions& options) {

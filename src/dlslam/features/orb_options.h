@@ -32,6 +32,16 @@ struct OrbOptions {
   // No keypoint closer than this to a level's edge [px at that level]; the
   // orientation patch and the rotated tests (radius <= 15) must fit inside.
   int edge_border = 19;
+  // With an exclusion mask (people), a corner is left out when an excluded
+  // pixel lies within this many pixels of it at its level [px at the level;
+  // 0 = only the corner's own pixel]. FAST compares the circle of radius 3
+  // around a corner: a corner that close to a person's outline may be made by
+  // the outline and move with the person (a T-junction of a boot and the
+  // floor behind it). 3 measured (docs/real-data.md): full mode a little
+  // better on the real frames (Bonn 0.0152 vs 0.0157 m, 7-Scenes 0.0353 vs
+  // 0.0381 m), a wash over 12 semi-real sequences, geometry alone on Bonn
+  // 0.23 vs 0.042 m --sequential (threaded both 0.11-0.30 m): not the default.
+  int exclusion_radius = 0;
 
   // Throws dlslam::Error naming the field and its value.
   void Check() const;

@@ -316,6 +316,33 @@ TEST(Tracker, CoastsOnTheRecentMotionNotOnTheLastStep) {
   }
 }
 
+// The camera stopped while it was covered: the frame that tracks again
+// corrects the coasted pose by several frames' motion at once. That
+// correction is not the camera's velocity; the next frame's prediction moves
+// on with the motion from before (here ~1 cm a frame), not with the jump.
+TEST(Tracker, TheCorrectionAfterCoastingIsNotTakenAsTheVelocity) {
+  const auto scene = testing::LandmarkScene::Room(6000, 12);
+  Map map;
+  Tracker tracker(TrackerOptions(), &map);
+  for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+  const SE3d velocity = CamFromWorld(9) * CamFromWorld(8).Inverse();
+  for (int i = 10; i < 16; ++i) {
+    const Frame covered = Frame::Create(i / 30.0, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
+    ASSERT_EQ(tracker.Track(std::make_shared<Frame>(covered)).state, TrackingState::kCoasting) << "frame " << i;
+  }
+  // Seen again where it stopped, at frame 9's pose: 6 frames' motion back.
+  const TrackingResult back = tracker.Track(scene.MakeFrame(CamFromWorld(9), 16 / 30.0, 70));
+  ASSERT_EQ(back.state, TrackingState::kOk);
+  const SE3d world_from_first = CamFromWorld(0).Inverse();
+  const SE3d stopped = CamFromWorld(9) * world_from_first;
+  ASSERT_LT((back.cam_from_world->Inverse().translation() - stopped.Inverse().translation()).norm(), 0.005);
+  const SE3d step = velocity * *back.cam_from_world;  // what the motion before says
+  const std::optional<SE3d> predicted = tracker.PredictedCamFromWorld();
+  ASSERT_TRUE(predicted.has_value());
+  EXPECT_LT((predicted->Inverse().translation() - step.Inverse().translation()).norm(), 0.003);
+  EXPECT_GT(velocity.translation().norm(), 0.005);  // the test moves: a jump would be 6 times that
+}
+
 // A frame whose map matches give a pose the camera cannot have reached since
 // the last frame (here: a view from 0.6 m away, as when people walking
 // together are taken for the scene) is refused: it coasts on the motion
