@@ -130,6 +130,7 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
   j["maps_merged"] = stats.maps_merged;
   j["relocalizations"] = stats.relocalizations;
   j["jumps_refused"] = stats.jumps_refused;
+  j["frames_gated"] = stats.frames_gated;
   j["frames_segmented_ahead"] = stats.frames_segmented_ahead;
   j["keyframes_held_for_masks"] = {{"held", stats.keyframes_held},
                                    {"dropped", stats.keyframes_held_dropped},

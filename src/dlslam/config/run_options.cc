@@ -103,6 +103,11 @@ void Visit(TrackerOptions& o, V& v) {
   v.Value("max_coasting_correction_deg", o.max_coasting_correction_deg, {"deg", "largest refinement of a coasting pose"});
   v.Value("max_jump_speed", o.max_jump_speed, {"m/s", "a tracked pose departing faster from the prediction is refused"});
   v.Value("max_jump_rate", o.max_jump_rate, {"deg/s", "a tracked pose turning faster from the prediction is refused"});
+  v.Value("gate_departure_m", o.gate_departure_m,
+          {"m", "a tracked pose further from the prediction is solved again on the matches near it (0 = off)"});
+  v.Value("gate_departure_deg", o.gate_departure_deg, {"deg", "... or turned further (0 = off)"});
+  v.Value("gate_radius_px", o.gate_radius_px, {"px", "... the matches within this of their keypoints at the prediction"});
+  v.Value("gate_refuses", o.gate_refuses, {"", "a pose departing that far after the gate coasts instead"});
   v.Value("new_map_after_lost_frames", o.new_map_after_lost_frames,
           {"frames", "lost this long without relocalizing: start a new map at the last pose; 0 = never"});
   v.Value("insert_keyframes", o.insert_keyframes, {"", "false: never extend the map (see localization_only)"});

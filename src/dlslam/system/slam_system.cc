@@ -263,6 +263,8 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     timings_.Add("relocalization_attempt", result.relocalization_ms);
   }
   LogStateChange(result, timestamp);
+  spdlog::debug("t={:.6f}: {} on {} keypoints, {} matches, {} inliers{}", timestamp, ToString(result.state),
+                frame->size(), result.matches, result.inliers, result.gated ? ", gated on the prediction" : "");
   if (result.new_map) {
     ++counts_.maps_started;
     frames_in_new_map_ = 0;
@@ -272,6 +274,7 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   } else if (result.state == TrackingState::kOk && tracker_.new_map_origin()) {
     TryMergeNewMap(*frame, result);
   }
+  counts_.frames_gated += result.gated;
   if (result.jump_refused) {
     ++counts_.jumps_refused;
     spdlog::debug("t={:.6f}: tracked pose refused, too far from the motion model", timestamp);

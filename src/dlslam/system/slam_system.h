@@ -128,6 +128,7 @@ struct RunStats {
   int frames_reextracted = 0;  // ORB features extracted again outside the removed regions
   int relocalizations = 0;  // lost -> tracked again through relocalization
   int jumps_refused = 0;    // tracked poses refused as too far from the motion model (coasted instead)
+  int frames_gated = 0;     // tracked poses solved again on the matches near the prediction (TrackerOptions::gate_departure_m)
   int frames_segmented_ahead = 0;  // whose masks were started by SegmentAhead
   // Asynchronous masks: keyframes held until their own masks came
   // (SemanticThreadOptions::keyframe_mask_max_wait_frames), those dropped

@@ -17,6 +17,25 @@ std::vector<MapPointId> MatchedIds(const std::vector<MapPointId>& matches) {
   return ids;
 }
 
+void KeepMatchesNear(const Frame& frame, const std::vector<MapPointView>& points, const SE3d& pose, double max_px,
+                     std::vector<MapPointId>* matches) {
+  std::unordered_map<MapPointId, const MapPointView*> by_id;
+  for (const MapPointView& p : points) by_id[p.id] = &p;
+  const CameraIntrinsics& camera = frame.camera();
+  for (std::size_t i = 0; i < matches->size(); ++i) {
+    if ((*matches)[i] == kNoId) continue;
+    const auto it = by_id.find((*matches)[i]);
+    const Eigen::Vector3d p = it == by_id.end() ? Eigen::Vector3d::Zero() : pose * it->second->position;
+    const FrameKeypoint& k = frame.keypoint(i);
+    const double reach = max_px * frame.pyramid().Scale(k.octave);
+    if (p.z() <= 1e-6 ||
+        (Eigen::Vector2d(camera.fx * p.x() / p.z() + camera.cx, camera.fy * p.y() / p.z() + camera.cy) - k.uv)
+                .squaredNorm() > reach * reach) {
+      (*matches)[i] = kNoId;
+    }
+  }
+}
+
 int OptimizeAndPrune(const Frame& frame, const std::vector<MapPointView>& points, const PoseOptimizerOptions& options,
                      SE3d* pose, std::vector<MapPointId>* matches) {
   std::unordered_map<MapPointId, const MapPointView*> by_id;

@@ -17,6 +17,11 @@ namespace dlslam {
 int OptimizeAndPrune(const Frame& frame, const std::vector<MapPointView>& points, const PoseOptimizerOptions& options,
                      SE3d* pose, std::vector<MapPointId>* matches);
 
+// Drops the matches whose point projects further than `max_px` (times the
+// keypoint's pyramid scale) from its keypoint at `pose`, or behind it.
+void KeepMatchesNear(const Frame& frame, const std::vector<MapPointView>& points, const SE3d& pose, double max_px,
+                     std::vector<MapPointId>* matches);
+
 int CountMatches(const std::vector<MapPointId>& matches);
 std::vector<MapPointId> MatchedIds(const std::vector<MapPointId>& matches);
 

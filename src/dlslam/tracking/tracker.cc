@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <numbers>
 
 #include "dlslam/tracking/matched_pose.h"
@@ -51,6 +52,9 @@ void TrackerOptions::Check() const {
   DLSLAM_CHECK(max_jump_speed > 0 && max_jump_rate > 0,
                "TrackerOptions::max_jump_speed {} m/s, max_jump_rate {} deg/s must be > 0", max_jump_speed,
                max_jump_rate);
+  DLSLAM_CHECK(gate_departure_m >= 0 && gate_departure_deg >= 0 && gate_radius_px > 0,
+               "TrackerOptions::gate_departure {} m, {} deg must be >= 0, gate_radius_px {} > 0", gate_departure_m,
+               gate_departure_deg, gate_radius_px);
   pose.Check();
   relocalization.Check();
 }
@@ -88,7 +92,9 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
   std::vector<MapPointId> matches;
   bool ok = false;
   const bool coasting = state_ == TrackingState::kCoasting;
-  if ((state_ == TrackingState::kOk || coasting) && velocity_) ok = TrackWithMotionModel(*frame, &pose, &matches);
+  if ((state_ == TrackingState::kOk || coasting) && velocity_) {
+    ok = TrackWithMotionModel(*frame, &pose, &matches, &result.gated);
+  }
   if (!ok && (state_ == TrackingState::kLost || coasting) && relocalizer_) {
     const Stopwatch watch;
     const RelocalizationAttempt attempt = relocalizer_->Relocalize(*frame);
@@ -109,11 +115,17 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
   bool searched_local_map = false;
   if (ok) {
     result.matches = CountMatches(matches);
-    result.inliers = TrackLocalMap(*frame, &pose, &matches, &reference);
+    std::vector<MapPointId> searched;
+    result.inliers = TrackLocalMap(*frame, &pose, &matches, &reference, &searched);
     searched_local_map = true;
+    bool departs = false;
+    if (state_ == TrackingState::kOk && !result.relocalized && velocity_) {
+      result.gated |= GateOnPrediction(*frame, searched, &pose, &matches, &result.inliers);
+      departs = options_.gate_refuses && GateDeparts(pose);
+    }
     ok = result.inliers >= options_.min_local_map_inliers;
     // Only a tracked camera has a prediction worth trusting.
-    if (ok && state_ == TrackingState::kOk && !result.relocalized && IsJump(pose, frame->timestamp())) {
+    if (ok && state_ == TrackingState::kOk && !result.relocalized && (departs || IsJump(pose, frame->timestamp()))) {
       ok = false;
       result.jump_refused = true;
     }
@@ -296,7 +308,8 @@ std::optional<SE3d> Tracker::EstimatePose(const Frame& frame) const {
   return guess;
 }
 
-bool Tracker::TrackWithMotionModel(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches) const {
+bool Tracker::TrackWithMotionModel(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches,
+                                   bool* gated) const {
   *pose = PredictedPose();
   const std::vector<MapPointView> points = map_->GetPoints(MatchedIds(last_matches_));
   ProjectionMatchOptions search;
@@ -309,7 +322,11 @@ bool Tracker::TrackWithMotionModel(const Frame& frame, SE3d* pose, std::vector<M
     SearchByProjection(frame, *pose, points, search, matches);
   }
   if (CountMatches(*matches) < options_.min_motion_matches) return false;
-  return OptimizeAndPrune(frame, points, pose, matches) >= options_.min_motion_matches / 2;
+  const std::vector<MapPointId> searched = *matches;
+  int inliers = OptimizeAndPrune(frame, points, pose, matches);
+  const bool was_gated = GateOnPrediction(frame, searched, pose, matches, &inliers);
+  if (gated != nullptr) *gated = was_gated;
+  return inliers >= options_.min_motion_matches / 2;
 }
 
 bool Tracker::TrackReferenceKeyFrame(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches) {
@@ -323,8 +340,37 @@ bool Tracker::TrackReferenceKeyFrame(const Frame& frame, SE3d* pose, std::vector
   return OptimizeAndPrune(frame, points, pose, matches) >= options_.min_reference_inliers;
 }
 
+bool Tracker::Departs(const SE3d& pose, const SE3d& reference, double metres, double degrees) {
+  const SE3d departure = pose * reference.Inverse();
+  return departure.translation().norm() > metres || departure.so3().Log().norm() * kRadToDeg > degrees;
+}
+
+bool Tracker::GateDeparts(const SE3d& pose) const {
+  if (options_.gate_departure_m <= 0 && options_.gate_departure_deg <= 0) return false;
+  const double metres = options_.gate_departure_m > 0 ? options_.gate_departure_m : INFINITY;
+  const double degrees = options_.gate_departure_deg > 0 ? options_.gate_departure_deg : INFINITY;
+  return Departs(pose, PredictedPose(), metres, degrees);
+}
+
+bool Tracker::GateOnPrediction(const Frame& frame, const std::vector<MapPointId>& searched, SE3d* pose,
+                               std::vector<MapPointId>* matches, int* inliers) const {
+  if (!GateDeparts(*pose)) return false;
+  const SE3d predicted = PredictedPose();
+  const std::vector<MapPointView> points = map_->GetPoints(MatchedIds(searched));
+  std::vector<MapPointId> near = searched;
+  KeepMatchesNear(frame, points, predicted, options_.gate_radius_px, &near);
+  if (CountMatches(near) < options_.min_local_map_inliers) return false;
+  SE3d gated = predicted;
+  const int n = OptimizeAndPrune(frame, points, &gated, &near);
+  if (n < options_.min_local_map_inliers) return false;
+  *pose = gated;
+  *matches = std::move(near);
+  *inliers = n;
+  return true;
+}
+
 int Tracker::TrackLocalMap(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches,
-                           KeyFrameId* reference) {
+                           KeyFrameId* reference, std::vector<MapPointId>* searched) {
   const LocalMapSnapshot local = map_->GetLocalMap(MatchedIds(*matches), options_.max_local_keyframes);
   if (local.reference != kNoId) *reference = local.reference;
   ProjectionMatchOptions search;
@@ -338,6 +384,7 @@ int Tracker::TrackLocalMap(const Frame& frame, SE3d* pose, std::vector<MapPointI
   }
   const ProjectionMatchStats stats = SearchByProjection(frame, *pose, candidates, search, matches);
   std::vector<MapPointView> all = map_->GetPoints(MatchedIds(*matches));
+  if (searched != nullptr) *searched = *matches;
   const int inliers = OptimizeAndPrune(frame, all, pose, matches);
   // Statistics for point culling: visible = projected into the frame; the
   // points matched before this search were visible too.
@@ -355,9 +402,7 @@ int Tracker::OptimizeAndPrune(const Frame& frame, const std::vector<MapPointView
 bool Tracker::IsJump(const SE3d& pose, double timestamp) const {
   constexpr double kMinInterval = 1.0 / 30.0;  // [s]; also for timestamps that do not increase
   const double dt = std::max(timestamp - last_timestamp_, kMinInterval);
-  const SE3d departure = pose * PredictedPose().Inverse();
-  return departure.translation().norm() > options_.max_jump_speed * dt ||
-         departure.so3().Log().norm() * kRadToDeg > options_.max_jump_rate * dt;
+  return Departs(pose, PredictedPose(), options_.max_jump_speed * dt, options_.max_jump_rate * dt);
 }
 
 SE3d Tracker::PredictedPose() const {

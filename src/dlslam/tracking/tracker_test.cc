@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "dlslam/util/check.h"
 #include "tests/support/landmark_scene.h"
@@ -341,6 +342,52 @@ TEST(Tracker, TheCorrectionAfterCoastingIsNotTakenAsTheVelocity) {
   ASSERT_TRUE(predicted.has_value());
   EXPECT_LT((predicted->Inverse().translation() - step.Inverse().translation()).norm(), 0.003);
   EXPECT_GT(velocity.translation().norm(), 0.005);  // the test moves: a jump would be 6 times that
+}
+
+// People in front of the room hold most of the keypoints and step 5 cm
+// sideways at once (their points in the map are where they stood): the
+// pose solved on every match follows them; with the gate the matches near
+// their keypoints at the prediction (the room's) give the pose.
+TEST(Tracker, AGatedPoseStaysOnWhatThePredictionExplains) {
+  testing::LandmarkScene still = testing::LandmarkScene::Room(800, 13);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> x(-1.0, 1.0), y(-0.8, 0.8), z(1.5, 2.5);
+  std::uniform_int_distribution<int> byte(0, 255);
+  const std::size_t first_mover = still.points.size();
+  for (int i = 0; i < 4000; ++i) {
+    still.points.emplace_back(x(rng), y(rng), z(rng));
+    std::array<uint8_t, 32> d;
+    for (uint8_t& b : d) b = static_cast<uint8_t>(byte(rng));
+    still.descriptors.push_back(d);
+  }
+  testing::LandmarkScene stepped = still;
+  for (std::size_t i = first_mover; i < stepped.points.size(); ++i) stepped.points[i].x() += 0.05;
+  const SE3d world_from_first = CamFromWorld(0).Inverse();
+  for (const double gate : {0.0, 0.03}) {
+    SCOPED_TRACE(gate);
+    Map map;
+    TrackerOptions options;
+    options.gate_departure_m = gate;
+    options.gate_departure_deg = gate > 0 ? 2.0 : 0.0;
+    Tracker tracker(options, &map);
+    for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(still.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+    double error = 0;
+    bool gated = false;
+    for (int i = 10; i < 13; ++i) {
+      const TrackingResult r = tracker.Track(stepped.MakeFrame(CamFromWorld(i), i / 30.0, 80 + i));
+      ASSERT_EQ(r.state, TrackingState::kOk) << i;
+      gated |= r.gated;
+      const SE3d truth = CamFromWorld(i) * world_from_first;
+      error = std::max(error, (r.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm());
+    }
+    if (gate > 0) {
+      EXPECT_TRUE(gated);
+      EXPECT_LT(error, 0.005);
+    } else {
+      EXPECT_FALSE(gated);
+      EXPECT_GT(error, 0.03);  // pulled towards the people's 5 cm
+    }
+  }
 }
 
 // A frame whose map matches give a pose the camera cannot have reached since
