@@ -108,6 +108,8 @@ void Visit(TrackerOptions& o, V& v) {
   v.Value("gate_departure_deg", o.gate_departure_deg, {"deg", "... or turned further (0 = off)"});
   v.Value("gate_radius_px", o.gate_radius_px, {"px", "... the matches within this of their keypoints at the prediction"});
   v.Value("gate_refuses", o.gate_refuses, {"", "a pose departing that far after the gate coasts instead"});
+  v.Value("gate_on_median_motion", o.gate_on_median_motion,
+          {"", "the gate's prediction moves on the median of the recent motions"});
   v.Value("new_map_after_lost_frames", o.new_map_after_lost_frames,
           {"frames", "lost this long without relocalizing: start a new map at the last pose; 0 = never"});
   v.Value("insert_keyframes", o.insert_keyframes, {"", "false: never extend the map (see localization_only)"});

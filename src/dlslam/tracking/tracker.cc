@@ -349,13 +349,19 @@ bool Tracker::GateDeparts(const SE3d& pose) const {
   if (options_.gate_departure_m <= 0 && options_.gate_departure_deg <= 0) return false;
   const double metres = options_.gate_departure_m > 0 ? options_.gate_departure_m : INFINITY;
   const double degrees = options_.gate_departure_deg > 0 ? options_.gate_departure_deg : INFINITY;
-  return Departs(pose, PredictedPose(), metres, degrees);
+  return Departs(pose, GatePrediction(), metres, degrees);
+}
+
+SE3d Tracker::GatePrediction() const {
+  constexpr std::size_t kMinMotions = 3;  // a median of fewer is the last motion's noise again
+  if (!options_.gate_on_median_motion || recent_motions_.size() < kMinMotions) return PredictedPose();
+  return CoastingVelocity() * LastPose();
 }
 
 bool Tracker::GateOnPrediction(const Frame& frame, const std::vector<MapPointId>& searched, SE3d* pose,
                                std::vector<MapPointId>* matches, int* inliers) const {
   if (!GateDeparts(*pose)) return false;
-  const SE3d predicted = PredictedPose();
+  const SE3d predicted = GatePrediction();
   const std::vector<MapPointView> points = map_->GetPoints(MatchedIds(searched));
   std::vector<MapPointId> near = searched;
   KeepMatchesNear(frame, points, predicted, options_.gate_radius_px, &near);

@@ -123,6 +123,10 @@ struct TrackerOptions {
   // frames depart by up to 0.11 m when tracked right (sensor jitter), and
   // refusing those cost 0.0157 -> 0.0177 m there (12 frames coasted).
   bool gate_refuses = false;
+  // The gate's prediction moves on the median of the recent motions
+  // (coasting_velocity_frames of them) instead of the last one, which holds
+  // two poses' jitter and whatever pulled the last frame.
+  bool gate_on_median_motion = false;
   // A tracker that stays lost for this many frames after the one that lost
   // it (relocalization failing on each) starts a new map at its last pose
   // (0 = never: stay lost) [frames; 5 = 1/6 s of attempts at 30 Hz].
@@ -266,6 +270,8 @@ class Tracker {
                         std::vector<MapPointId>* matches, int* inliers) const;
   // True when the gate is on and `pose` departs from the prediction by more than it allows.
   bool GateDeparts(const SE3d& pose) const;
+  // The pose the gate measures against (TrackerOptions::gate_on_median_motion).
+  SE3d GatePrediction() const;
   // True when `pose` departs from `reference` by more than `metres` or `degrees`.
   static bool Departs(const SE3d& pose, const SE3d& reference, double metres, double degrees);
   // Optimises the pose on the matches; drops outliers; returns inliers.
