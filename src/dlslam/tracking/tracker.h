@@ -7,6 +7,9 @@
 //      descriptor matching against the reference keyframe;
 //   3. the local map (covisible keyframes' points) is projected and matched,
 //      and the pose optimised again;
+//   (after 2 and 3: a pose departing from the prediction by centimetres is
+//      solved again on the matches the prediction explains: people pulling
+//      it; TrackerOptions::gate_departure_m)
 //   4. a keyframe is requested when tracking weakens.
 // A frame that cannot be tracked (people covering the view, a blur) coasts:
 // it gets the motion model's pose (refined on what few matches there are
