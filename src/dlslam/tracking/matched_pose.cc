@@ -4,6 +4,15 @@
 #include <unordered_map>
 
 namespace dlslam {
+namespace {
+
+std::unordered_map<MapPointId, const MapPointView*> IndexById(const std::vector<MapPointView>& points) {
+  std::unordered_map<MapPointId, const MapPointView*> by_id;
+  for (const MapPointView& p : points) by_id[p.id] = &p;
+  return by_id;
+}
+
+}  // namespace
 
 int CountMatches(const std::vector<MapPointId>& matches) {
   return static_cast<int>(std::count_if(matches.begin(), matches.end(), [](MapPointId id) { return id != kNoId; }));
@@ -19,27 +28,20 @@ std::vector<MapPointId> MatchedIds(const std::vector<MapPointId>& matches) {
 
 void KeepMatchesNear(const Frame& frame, const std::vector<MapPointView>& points, const SE3d& pose, double max_px,
                      std::vector<MapPointId>* matches) {
-  std::unordered_map<MapPointId, const MapPointView*> by_id;
-  for (const MapPointView& p : points) by_id[p.id] = &p;
-  const CameraIntrinsics& camera = frame.camera();
+  const auto by_id = IndexById(points);
   for (std::size_t i = 0; i < matches->size(); ++i) {
     if ((*matches)[i] == kNoId) continue;
     const auto it = by_id.find((*matches)[i]);
     const Eigen::Vector3d p = it == by_id.end() ? Eigen::Vector3d::Zero() : pose * it->second->position;
     const FrameKeypoint& k = frame.keypoint(i);
     const double reach = max_px * frame.pyramid().Scale(k.octave);
-    if (p.z() <= 1e-6 ||
-        (Eigen::Vector2d(camera.fx * p.x() / p.z() + camera.cx, camera.fy * p.y() / p.z() + camera.cy) - k.uv)
-                .squaredNorm() > reach * reach) {
-      (*matches)[i] = kNoId;
-    }
+    if (p.z() <= 1e-6 || (frame.camera().Project(p) - k.uv).squaredNorm() > reach * reach) (*matches)[i] = kNoId;
   }
 }
 
 int OptimizeAndPrune(const Frame& frame, const std::vector<MapPointView>& points, const PoseOptimizerOptions& options,
                      SE3d* pose, std::vector<MapPointId>* matches) {
-  std::unordered_map<MapPointId, const MapPointView*> by_id;
-  for (const MapPointView& p : points) by_id[p.id] = &p;
+  const auto by_id = IndexById(points);
   std::vector<PoseObservation> observations;
   std::vector<int> keypoint_of;
   for (std::size_t i = 0; i < matches->size(); ++i) {

@@ -344,24 +344,36 @@ TEST(Tracker, TheCorrectionAfterCoastingIsNotTakenAsTheVelocity) {
   EXPECT_GT(velocity.translation().norm(), 0.005);  // the test moves: a jump would be 6 times that
 }
 
+// The room's 800 points and, in front of them, 4000 on people (random
+// descriptors, 1.5-2.5 m away): the people hold most of the keypoints.
+constexpr std::size_t kPeoplePoints = 4000;
+testing::LandmarkScene RoomWithPeople(unsigned seed) {
+  testing::LandmarkScene scene = testing::LandmarkScene::Room(800, 13);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> x(-1.0, 1.0), y(-0.8, 0.8), z(1.5, 2.5);
+  std::uniform_int_distribution<int> byte(0, 255);
+  for (std::size_t i = 0; i < kPeoplePoints; ++i) {
+    scene.points.emplace_back(x(rng), y(rng), z(rng));
+    std::array<uint8_t, 32> d;
+    for (uint8_t& b : d) b = static_cast<uint8_t>(byte(rng));
+    scene.descriptors.push_back(d);
+  }
+  return scene;
+}
+
+// `scene` (RoomWithPeople) with the people `dx` metres further along x.
+testing::LandmarkScene PeopleStepped(testing::LandmarkScene scene, double dx) {
+  for (std::size_t i = scene.points.size() - kPeoplePoints; i < scene.points.size(); ++i) scene.points[i].x() += dx;
+  return scene;
+}
+
 // People in front of the room hold most of the keypoints and step 5 cm
 // sideways at once (their points in the map are where they stood): the
 // pose solved on every match follows them; with the gate the matches near
 // their keypoints at the prediction (the room's) give the pose.
 TEST(Tracker, AGatedPoseStaysOnWhatThePredictionExplains) {
-  testing::LandmarkScene still = testing::LandmarkScene::Room(800, 13);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> x(-1.0, 1.0), y(-0.8, 0.8), z(1.5, 2.5);
-  std::uniform_int_distribution<int> byte(0, 255);
-  const std::size_t first_mover = still.points.size();
-  for (int i = 0; i < 4000; ++i) {
-    still.points.emplace_back(x(rng), y(rng), z(rng));
-    std::array<uint8_t, 32> d;
-    for (uint8_t& b : d) b = static_cast<uint8_t>(byte(rng));
-    still.descriptors.push_back(d);
-  }
-  testing::LandmarkScene stepped = still;
-  for (std::size_t i = first_mover; i < stepped.points.size(); ++i) stepped.points[i].x() += 0.05;
+  const testing::LandmarkScene still = RoomWithPeople(5);
+  const testing::LandmarkScene stepped = PeopleStepped(still, 0.05);
   const SE3d world_from_first = CamFromWorld(0).Inverse();
   for (const double gate : {0.0, 0.03}) {
     SCOPED_TRACE(gate);
@@ -398,19 +410,8 @@ TEST(Tracker, AGatedPoseStaysOnWhatThePredictionExplains) {
 // the prediction carries the pulled position only, and the next frames
 // come back to the truth.
 TEST(Tracker, TheMedianMotionGateLetsGoOfAPullThatHasEnded) {
-  testing::LandmarkScene still = testing::LandmarkScene::Room(800, 13);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> x(-1.0, 1.0), y(-0.8, 0.8), z(1.5, 2.5);
-  std::uniform_int_distribution<int> byte(0, 255);
-  const std::size_t first_mover = still.points.size();
-  for (int i = 0; i < 4000; ++i) {
-    still.points.emplace_back(x(rng), y(rng), z(rng));
-    std::array<uint8_t, 32> d;
-    for (uint8_t& b : d) b = static_cast<uint8_t>(byte(rng));
-    still.descriptors.push_back(d);
-  }
-  testing::LandmarkScene stepped = still;
-  for (std::size_t k = first_mover; k < stepped.points.size(); ++k) stepped.points[k].x() += 0.025;
+  const testing::LandmarkScene still = RoomWithPeople(7);
+  const testing::LandmarkScene stepped = PeopleStepped(still, 0.025);
   const SE3d world_from_first = CamFromWorld(0).Inverse();
   for (const bool median : {false, true}) {
     SCOPED_TRACE(median);
@@ -425,7 +426,9 @@ TEST(Tracker, TheMedianMotionGateLetsGoOfAPullThatHasEnded) {
       ASSERT_EQ(r.state, TrackingState::kOk) << i;
       const SE3d truth = CamFromWorld(i) * world_from_first;
       error = (r.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm();
-      if (i == 10) EXPECT_GT(error, 0.015) << "the step pulls the pose";
+      if (i == 10) {
+        EXPECT_GT(error, 0.015) << "the step pulls the pose";
+      }
     }
     if (median) {
       EXPECT_LT(error, 0.003);
