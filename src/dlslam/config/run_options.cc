@@ -231,6 +231,15 @@ void Visit(DynamicOptions& o, V& v) {
   v.Value("movable_dynamic_evidence", o.fusion.movable_dynamic_evidence, {"points", "dynamic points that make it move"});
   v.Value("dilation_px", o.fusion.dilation_px, {"px", "of the removal mask"});
   v.End();
+  v.Begin("completion", "the network's person mask completed with the depth");
+  v.Value("enabled", o.completion.enabled, {"", "add the pixels beside a person at the person's depth"});
+  v.Value("reach_m", o.completion.reach_m, {"m", "from the person's outline, at their depth"});
+  v.Value("depth_margin_m", o.completion.depth_margin_m, {"m", "around the person's depth quartiles"});
+  v.Value("min_segment_pixels", o.completion.min_segment_pixels, {"px", "smaller segments are not completed"});
+  v.Value("min_depth_m", o.completion.min_depth_m, {"m", "valid depths"});
+  v.Value("max_depth_m", o.completion.max_depth_m, {"m", "valid depths"});
+  v.Value("pixel_step", o.completion.pixel_step, {"px", "working grid (1 or 2)"});
+  v.End();
   v.Value("cull_vanished_points", o.cull_vanished_points, {"", "remove map points geometry sees gone"});
   v.Value("resolve_inverted_check", o.resolve_inverted_check, {"", "repeat an inverted-looking check with the movers' pose"});
   v.Value("inverted_check_min_share", o.inverted_check_min_share, {"", "of the image marked before trying"});

@@ -30,6 +30,7 @@ void DynamicOptions::Check() const {
                "unknown dynamic mode {}", static_cast<int>(mode));
   geometry.Check();
   fusion.Check();
+  completion.Check();
   DLSLAM_CHECK(inverted_check_min_share > 0 && inverted_check_min_share <= 1,
                "DynamicOptions::inverted_check_min_share {} outside (0, 1]", inverted_check_min_share);
   DLSLAM_CHECK(max_geometry_share_of_prior_static > 0 && max_geometry_share_of_prior_static <= 1,

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "dlslam/dynamic/geometry_detector.h"
+#include "dlslam/dynamic/mask_completion.h"
 #include "dlslam/dynamic/mask_fusion.h"
 
 namespace dlslam {
@@ -34,6 +35,10 @@ struct DynamicOptions {
   // the dilation of the removal mask in every mode (modes semantic and
   // geometry use policies semantic and geometry with the same dilation).
   dynamic::FusionOptions fusion;
+  // Modes semantic and full: the network's person mask completed with the
+  // depth (the parts of a body it missed beside what it found) before
+  // anything uses it.
+  dynamic::MaskCompletionOptions completion;
   // Map points that geometry shows to have moved away (a reference keyframe
   // saw them, the current depth sees through where they were) are removed
   // from the map, so tracking never matches them again.

@@ -66,7 +66,7 @@ dynamic::FusionOptions DynamicStage::Fusion() const {
   return fusion;
 }
 
-DynamicPrior DynamicStage::TakePrior(const DynamicInputs& inputs) {
+DynamicPrior DynamicStage::TakePrior(const DynamicInputs& inputs, const cv::Mat& depth) {
   DynamicPrior prior;
   if (!UsesSemanticPrior(options_.mode) || !inputs.semantic_prior) return prior;
   Stopwatch watch;
@@ -81,6 +81,11 @@ DynamicPrior DynamicStage::TakePrior(const DynamicInputs& inputs) {
   check(prior.masks.dynamic, "semantic prior");
   check(prior.masks.movable, "movable-class mask");
   if (prior.masks.dynamic.empty() || cv::countNonZero(prior.masks.dynamic) == 0) return prior;
+  if (options_.completion.enabled && !depth.empty()) {
+    watch = Stopwatch();
+    prior.masks.dynamic = dynamic::CompleteMaskByDepth(prior.masks.dynamic, depth, camera_.fx, options_.completion);
+    timings_->Add("mask_completion", watch.ElapsedMs());
+  }
   const dynamic::FusionOptions fusion = Fusion();
   prior.removal = dynamic::FuseDynamicMasks({prior.masks.dynamic, {}}, {}, fusion);
   prior.final =
@@ -89,7 +94,7 @@ DynamicPrior DynamicStage::TakePrior(const DynamicInputs& inputs) {
 }
 
 DynamicRemoval DynamicStage::Process(const Frame& frame, const cv::Mat& depth, const DynamicInputs& inputs) {
-  return Process(frame, depth, TakePrior(inputs), inputs.moving_truth);
+  return Process(frame, depth, TakePrior(inputs, depth), inputs.moving_truth);
 }
 
 DynamicRemoval DynamicStage::Process(const Frame& frame, const cv::Mat& depth, const DynamicPrior& prior,

@@ -115,9 +115,10 @@ class DynamicStage {
                StageTimings* timings);
 
   // Waits for the frame's semantic prior (modes semantic and full; timed as
-  // "semantic_wait") and fuses it alone. Throws dlslam::Error for a prior of
-  // the wrong type or size.
-  DynamicPrior TakePrior(const DynamicInputs& inputs);
+  // "semantic_wait"), completes its dynamic mask with `depth` (CV_32FC1
+  // metres; empty: not completed; DynamicOptions::completion) and fuses it
+  // alone. Throws dlslam::Error for a prior of the wrong type or size.
+  DynamicPrior TakePrior(const DynamicInputs& inputs, const cv::Mat& depth);
 
   // What to remove from `frame`, whose prior `prior` is: tracking and
   // mapping get the frame without those keypoints (SlamSystem); the mask

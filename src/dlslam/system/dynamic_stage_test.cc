@@ -126,7 +126,7 @@ TEST_F(DynamicStageTest, ThePriorAloneIsFusedBeforeExtractionAndFinalUnderUnion)
   DynamicInputs inputs;
   inputs.semantic_prior = [] { return dynamic::SemanticMasks{Rectangle(100, 100, 300, 200)}; };
   DynamicStage full = MakeStage(DynamicMode::kFull, /*dilation_px=*/5.0);
-  const DynamicPrior prior = full.TakePrior(inputs);
+  const DynamicPrior prior = full.TakePrior(inputs, cv::Mat());
   ASSERT_FALSE(prior.removal.empty());
   EXPECT_TRUE(prior.final);  // union: the fused mask holds the prior whatever geometry says
   // Dilated as the fused mask is: 5 px around the rectangle, not 6.
@@ -141,25 +141,25 @@ TEST_F(DynamicStageTest, ThePriorAloneIsFusedBeforeExtractionAndFinalUnderUnion)
   EXPECT_EQ(cv::countNonZero(from_prior.mask != prior.removal), 0);  // no geometry without depth
 
   DynamicStage semantic = MakeStage(DynamicMode::kSemantic);
-  EXPECT_TRUE(semantic.TakePrior(inputs).final);
+  EXPECT_TRUE(semantic.TakePrior(inputs, cv::Mat()).final);
   DynamicOptions confirms;
   confirms.mode = DynamicMode::kFull;
   confirms.fusion.policy = dynamic::FusionPolicy::kGeometryConfirms;
   DynamicStage confirming(confirms, kCamera, &map_, &tracker_, &timings_);
-  const DynamicPrior maybe = confirming.TakePrior(inputs);
+  const DynamicPrior maybe = confirming.TakePrior(inputs, cv::Mat());
   EXPECT_FALSE(maybe.removal.empty());
   EXPECT_FALSE(maybe.final);  // geometry may keep the segment: its keypoints must be extracted
 
   // No prior, or one without a pixel: nothing to leave out.
   inputs.semantic_prior = [] { return dynamic::SemanticMasks{Rectangle(0, 0, 0, 0)}; };
-  EXPECT_TRUE(full.TakePrior(inputs).removal.empty());
-  EXPECT_TRUE(full.TakePrior(DynamicInputs{}).removal.empty());
+  EXPECT_TRUE(full.TakePrior(inputs, cv::Mat()).removal.empty());
+  EXPECT_TRUE(full.TakePrior(DynamicInputs{}, cv::Mat()).removal.empty());
   bool asked = false;
   inputs.semantic_prior = [&asked] {
     asked = true;
     return dynamic::SemanticMasks{};
   };
-  EXPECT_TRUE(MakeStage(DynamicMode::kGeometry).TakePrior(inputs).removal.empty());
+  EXPECT_TRUE(MakeStage(DynamicMode::kGeometry).TakePrior(inputs, cv::Mat()).removal.empty());
   EXPECT_FALSE(asked);  // geometry mode never waits for a network
 }
 

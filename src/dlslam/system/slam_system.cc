@@ -192,7 +192,7 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     counts_.frames_segmented_ahead += masks.segmented_ahead;
     inputs.semantic_prior = masks.prior;
   }
-  const DynamicPrior prior = dynamic_.TakePrior(inputs);
+  const DynamicPrior prior = dynamic_.TakePrior(inputs, depth);
   Stopwatch watch;
   const features::OrbExtractor* first = nullptr;
   const features::OrbFeatures features = ExtractOutside(colour, prior, &first);
