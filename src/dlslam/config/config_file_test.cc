@@ -117,12 +117,14 @@ TEST_F(ConfigFileTest, MistakesAreErrorsWithTheirLine) {
   EXPECT_THAT(Error("merge_agreement_deg: -3\n"), HasSubstr("c.yaml:1: merge_agreement_deg: out of range"));
   EXPECT_THAT(Error("mapping:\n  max_bundle_yields_in_a_row: -1\n"),
               HasSubstr("c.yaml:2: mapping.max_bundle_yields_in_a_row: out of range"));
-  // The prediction gate, the extractor's exclusion radius.
+  // The prediction gate, the extractor's exclusion radius, the mask completion.
   EXPECT_THAT(Error("tracker:\n  gate_departure_m: -0.01\n"),
               HasSubstr("c.yaml:2: tracker.gate_departure_m: out of range"));
   EXPECT_THAT(Error("tracker:\n  gate_radius_px: 0\n"), HasSubstr("c.yaml:2: tracker.gate_radius_px: out of range"));
   EXPECT_THAT(Error("static_orb:\n  exclusion_radius: 16\n"),
               HasSubstr("c.yaml:2: static_orb.exclusion_radius: out of range"));
+  EXPECT_THAT(Error("dynamic:\n  completion:\n    pixel_step: 3\n"),
+              HasSubstr("c.yaml:3: dynamic.completion.pixel_step: out of range"));
   // Geometry overruled, keyframes held for their masks.
   EXPECT_THAT(Error("dynamic:\n  max_geometry_share_of_prior_static: 0\n"),
               HasSubstr("c.yaml:2: dynamic.max_geometry_share_of_prior_static: out of range"));

@@ -36,11 +36,11 @@ float Quantile(std::vector<float>& values, double q) {
   return values[static_cast<std::size_t>(k)];
 }
 
-// CompleteMaskByDepth on one grid: each pixel stands for pixel_area image
-// pixels (for min_segment_pixels).
+// CompleteMaskByDepth on one grid, `mask` 0 / 255: each pixel stands for
+// pixel_area image pixels (for min_segment_pixels).
 cv::Mat Complete(const cv::Mat& mask, const cv::Mat& depth, double focal_px, const MaskCompletionOptions& options,
                  int pixel_area) {
-  cv::Mat completed = (mask != 0);
+  cv::Mat completed = mask.clone();
 
   // Every pixel's distance to the nearest segment and that segment's label
   // (each connected component of the mask gets one).
@@ -102,12 +102,14 @@ cv::Mat CompleteMaskByDepth(const cv::Mat& mask, const cv::Mat& depth, double fo
   cv::Mat completed = (mask != 0);
   if (!options.enabled || options.reach_m == 0 || cv::countNonZero(completed) == 0) return completed;
   const int step = options.pixel_step;
-  if (step == 1 || mask.cols < 2 * step || mask.rows < 2 * step) return Complete(mask, depth, focal_px, options, 1);
+  if (step == 1 || mask.cols < 2 * step || mask.rows < 2 * step) {
+    return Complete(completed, depth, focal_px, options, 1);
+  }
   // On a coarser grid (nearest neighbour: depths are not blended across a
   // silhouette), then back at full size; the network's own pixels stay exact.
   const cv::Size grid(mask.cols / step, mask.rows / step);
   cv::Mat small_mask, small_depth, grown;
-  cv::resize(mask, small_mask, grid, 0, 0, cv::INTER_NEAREST);
+  cv::resize(completed, small_mask, grid, 0, 0, cv::INTER_NEAREST);
   cv::resize(depth, small_depth, grid, 0, 0, cv::INTER_NEAREST);
   cv::resize(Complete(small_mask, small_depth, focal_px / step, options, step * step), grown, mask.size(), 0, 0,
              cv::INTER_NEAREST);
