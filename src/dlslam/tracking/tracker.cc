@@ -124,8 +124,10 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
       departs = options_.gate_refuses && GateDeparts(pose);
     }
     ok = result.inliers >= options_.min_local_map_inliers;
-    // Only a tracked camera has a prediction worth trusting.
-    if (ok && state_ == TrackingState::kOk && !result.relocalized && (departs || IsJump(pose, frame->timestamp()))) {
+    // Only a tracked camera has a prediction worth trusting: not one just
+    // found again, whose pose may be off by more than a frame's motion.
+    if (ok && state_ == TrackingState::kOk && !result.relocalized && !last_pose_recovered_ &&
+        (departs || IsJump(pose, frame->timestamp()))) {
       ok = false;
       result.jump_refused = true;
     }
@@ -183,8 +185,11 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
   // coasting, the step from the last coasted pose is mostly the coasting's
   // error being corrected, not the camera's motion: the motion model keeps
   // the coasting velocity (semi-real kitchen: a 0.24 m correction taken as
-  // the velocity sent the next frames 0.2 m a frame the wrong way).
-  if (!last_pose_ || back_from_loss) {
+  // the velocity sent the next frames 0.2 m a frame the wrong way). The step
+  // from the first pose back from a loss is that pose's correction: no
+  // velocity either (semi-real kitchen: a relocalization 0.22 m off, its
+  // correction taken as the velocity, and the next frames ran 2 m away).
+  if (!last_pose_ || back_from_loss || last_pose_recovered_) {
     velocity_.reset();
     recent_motions_.clear();
   } else if (!coasting) {
@@ -194,6 +199,7 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
       recent_motions_.pop_front();
     }
   }
+  last_pose_recovered_ = back_from_loss;
   ++frames_since_keyframe_;
   last_matches_ = matches;
   // A map moved by loop closing during this call: the pose is from before,
@@ -420,6 +426,7 @@ SE3d Tracker::PredictedPose() const {
 void Tracker::ForgetMotion() {
   velocity_.reset();
   recent_motions_.clear();
+  last_pose_recovered_ = false;
 }
 
 SE3d Tracker::CoastingVelocity() const {

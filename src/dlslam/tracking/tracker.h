@@ -320,6 +320,10 @@ class Tracker {
   // se(3) logarithms of the velocities of the last tracked frames (not
   // coasted, not back from a loss), newest last; for CoastingVelocity.
   std::deque<Eigen::Matrix<double, 6, 1>> recent_motions_;
+  // The last pose is the first one back from a loss (relocalized, or found
+  // from the reference keyframe): the step from it corrects it rather than
+  // moving the camera, so it is neither a velocity nor a prediction to refuse by.
+  bool last_pose_recovered_ = false;
   std::vector<MapPointId> last_matches_;
   KeyFrameId reference_keyframe_ = kNoId;
   int frames_since_keyframe_ = 0;
