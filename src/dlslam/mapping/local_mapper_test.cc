@@ -72,7 +72,11 @@ TEST(LocalMapper, SequentialModeIsReproducibleBitForBit) {
 
 TEST(LocalMapper, ThreadedRunTracksAsWell) {
   const RunResult r = RunSequence(true, true, 200);
-  EXPECT_LT(r.max_error, 0.01);
+  // Threaded, how much bundle adjustment gets done before each frame depends
+  // on the scheduler: with the other tests running beside it the worst frame
+  // reached 0.0106-0.0142 m in 3 of 24 runs (0.01 bound; before and after
+  // the tracker's gated-keyframe change alike), the sequential run's 0.01.
+  EXPECT_LT(r.max_error, 0.02);
   EXPECT_GT(r.stats.keyframes_processed, 3);
 }
 

@@ -263,8 +263,16 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     timings_.Add("relocalization_attempt", result.relocalization_ms);
   }
   LogStateChange(result, timestamp);
-  spdlog::debug("t={:.6f}: {} on {} keypoints, {} matches, {} inliers{}", timestamp, ToString(result.state),
-                frame->size(), result.matches, result.inliers, result.gated ? ", gated on the prediction" : "");
+  if (spdlog::should_log(spdlog::level::debug)) {
+    std::string where;
+    if (result.cam_from_world) {
+      const Eigen::Vector3d c = result.cam_from_world->Inverse().translation();
+      where = fmt::format(", camera at ({:.3f}, {:.3f}, {:.3f})", c.x(), c.y(), c.z());
+    }
+    spdlog::debug("t={:.6f}: {} on {} keypoints, {} matches, {} inliers{}{}{}", timestamp, ToString(result.state),
+                  frame->size(), result.matches, result.inliers, result.gated ? ", gated on the prediction" : "",
+                  result.new_keyframe ? ", new keyframe" : "", where);
+  }
   if (result.new_map) {
     ++counts_.maps_started;
     frames_in_new_map_ = 0;

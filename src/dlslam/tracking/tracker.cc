@@ -131,6 +131,10 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
       ok = false;
       result.jump_refused = true;
     }
+    if (ok && coasting && !result.relocalized && ImplausibleAfterCoasting(pose, result.inliers)) {
+      ok = false;
+      result.jump_refused = true;
+    }
   }
   SE3d coasted;
   // Coasting starts: on the recent motion, not on the last frame's alone.
@@ -203,9 +207,11 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
   ++frames_since_keyframe_;
   last_matches_ = matches;
   // A map moved by loop closing during this call: the pose is from before,
-  // so it must not become a keyframe.
+  // so it must not become a keyframe. Nor does a gated pose: the frame's
+  // matches disagreed about it, and a keyframe would write points into the
+  // map that agree with it.
   const bool map_moved = map_->Generation() != generation;
-  if (!map_moved && NeedNewKeyFrame(*frame, matches, reference)) {
+  if (!map_moved && !result.gated && NeedNewKeyFrame(*frame, matches, reference)) {
     if (hold_keyframe) {
       result.held_keyframe = KeyFrameCandidate{frame, pose, matches, generation};
     } else {
@@ -415,6 +421,15 @@ bool Tracker::IsJump(const SE3d& pose, double timestamp) const {
   constexpr double kMinInterval = 1.0 / 30.0;  // [s]; also for timestamps that do not increase
   const double dt = std::max(timestamp - last_timestamp_, kMinInterval);
   return Departs(pose, PredictedPose(), options_.max_jump_speed * dt, options_.max_jump_rate * dt);
+}
+
+bool Tracker::ImplausibleAfterCoasting(const SE3d& pose, int inliers) const {
+  if (inliers >= options_.relocalization.min_inliers) return false;
+  const double frames = std::max(coasted_frames_, 1);
+  const double speed_m = velocity_ ? velocity_->translation().norm() : 0.0;
+  const double speed_deg = velocity_ ? velocity_->so3().Log().norm() * kRadToDeg : 0.0;
+  return Departs(pose, PredictedPose(), options_.max_coasting_correction_m + 2.0 * speed_m * frames,
+                 options_.max_coasting_correction_deg + 2.0 * speed_deg * frames);
 }
 
 SE3d Tracker::PredictedPose() const {

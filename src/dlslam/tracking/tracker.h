@@ -262,6 +262,13 @@ class Tracker {
   // True when `pose` departs from the prediction faster than the camera can
   // move (TrackerOptions::max_jump_speed, max_jump_rate).
   bool IsJump(const SE3d& pose, double timestamp) const;
+  // True when `pose`, the first tracked after coasting on `inliers`, corrects
+  // the coasted prediction by more than the coasting can have drifted (the
+  // coasting correction bound plus twice the coasting velocity per frame
+  // coasted: a camera that stopped, or turned back) with less support than
+  // a relocalization needs. In a crowd the frame that "tracks again" after
+  // a few covered ones is often a walker's unmasked clothes.
+  bool ImplausibleAfterCoasting(const SE3d& pose, int inliers) const;
   // Pose from the last frame's points with the constant-velocity guess.
   // `gated` (optional): set when the pose was solved again near the prediction.
   bool TrackWithMotionModel(const Frame& frame, SE3d* pose, std::vector<MapPointId>* matches,
