@@ -154,8 +154,8 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
     result.cam_from_reference = last_from_reference_.value_or(SE3d::Identity());
     return result;
   }
-  if (!ok && state_ == TrackingState::kLost && options_.insert_keyframes && options_.new_map_after_lost_frames > 0 &&
-      lost_frames_ >= options_.new_map_after_lost_frames) {
+  if (!ok && options_.insert_keyframes && options_.new_map_after_lost_frames > 0 &&
+      lost_frames_ + 1 >= options_.new_map_after_lost_frames) {
     // Where the camera was last seen is the best guess of where it is.
     const SE3d start = last_pose_ ? LastPose() : SE3d::Identity();
     if (StartMap(frame, start, &result)) {
@@ -170,7 +170,7 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
     }
   }
   if (!ok) {
-    if (state_ == TrackingState::kLost) ++lost_frames_;
+    ++lost_frames_;
     state_ = TrackingState::kLost;
     ForgetMotion();
     result.relocalized = false;

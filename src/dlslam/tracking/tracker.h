@@ -136,10 +136,15 @@ struct TrackerOptions {
   // kitchen (static) orb 0.0373 -> 0.0347 m, full 0.0380 -> 0.0329 m;
   // Bonn threaded full the same (7 runs each, medians 0.0172 / 0.0176 m).
   bool gate_on_median_motion = true;
-  // A tracker that stays lost for this many frames after the one that lost
-  // it (relocalization failing on each) starts a new map at its last pose
-  // (0 = never: stay lost) [frames; 5 = 1/6 s of attempts at 30 Hz].
-  int new_map_after_lost_frames = 5;
+  // The N-th frame in a row that would have no pose (tracking, coasting and
+  // relocalization all failed on it) starts a new map at the last pose
+  // instead (0 = never: stay lost) [frames; 1 = at once]. Coasting has
+  // tried relocalization on every covered frame already; the old default
+  // (6 frames without a pose per loss) left semi-real crowds at 98.6-98.8 %
+  // posed. At once (1), a map started inside the crowd drifted up to 1 m
+  // before the old map was found again (docs/real-data.md); 3 leaves two
+  // frames without a pose per loss for the crowd to pass.
+  int new_map_after_lost_frames = 3;
   // false: localization only, the map is never extended (a loaded map).
   bool insert_keyframes = true;
   // Used when the tracker is given a keyframe index.
@@ -325,7 +330,8 @@ class Tracker {
   std::optional<SE3d> last_from_reference_;  // cam_last_from_cam_reference then
   std::optional<SE3d> velocity_;  // cam_from_world_last * world_from_cam_before_last
   // se(3) logarithms of the velocities of the last tracked frames (not
-  // coasted, not back from a loss), newest last; for CoastingVelocity.
+  // coasted, not back from a loss), newest last; for CoastingVelocity and
+  // the gate's prediction.
   std::deque<Eigen::Matrix<double, 6, 1>> recent_motions_;
   // The last pose is the first one back from a loss (relocalized, or found
   // from the reference keyframe): the step from it corrects it rather than

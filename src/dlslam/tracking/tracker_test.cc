@@ -243,6 +243,36 @@ TEST(Tracker, TheStepFromAPoorRecoveryIsNeitherVelocityNorJump) {
   }
 }
 
+// Carried somewhere the map has never seen (another room, nothing to
+// match): the N-th frame without a pose starts a new map there, at the last
+// pose; N - 1 frames go without one (new_map_after_lost_frames).
+TEST(Tracker, TheNthFrameWithoutAPoseStartsANewMap) {
+  const auto here = testing::LandmarkScene::Room(6000, 15);
+  const auto elsewhere = testing::LandmarkScene::Room(6000, 16);  // other descriptors
+  for (const int n : {1, 3}) {
+    SCOPED_TRACE(n);
+    Map map;
+    TrackerOptions options;
+    options.max_coasting_frames = 0;
+    options.new_map_after_lost_frames = n;
+    Tracker tracker(options, &map);
+    for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(here.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+    const SE3d last = *tracker.PredictedCamFromWorld();
+    int without_pose = 0;
+    TrackingResult r;
+    for (int i = 10; i < 20 && !r.new_map; ++i) {
+      r = tracker.Track(elsewhere.MakeFrame(CamFromWorld(i), i / 30.0, i));
+      without_pose += !r.cam_from_world.has_value();
+    }
+    ASSERT_TRUE(r.new_map);
+    EXPECT_EQ(without_pose, n - 1);
+    EXPECT_EQ(r.state, TrackingState::kOk);
+    EXPECT_TRUE(tracker.new_map_origin().has_value());
+    // Dead reckoning: the new map starts where the camera was last seen.
+    EXPECT_LT((r.cam_from_world->Inverse().translation() - last.Inverse().translation()).norm(), 0.05);
+  }
+}
+
 TEST(Tracker, EstimatePoseIsAccurateAndLeavesTheTrackerAsItWas) {
   const auto scene = testing::LandmarkScene::Room(6000, 6);
   Map map_a, map_b;
