@@ -10,17 +10,19 @@
 //   (after 2 and 3: a pose departing from the prediction by centimetres is
 //      solved again on the matches the prediction explains: people pulling
 //      it; TrackerOptions::gate_departure_m)
-//   4. a keyframe is requested when tracking weakens.
+//   4. a keyframe is requested when tracking weakens (never from a gated pose).
 // A frame that cannot be tracked (people covering the view, a blur) coasts:
 // it gets the motion model's pose (refined on what few matches there are
 // when they agree with it) and is reported as coasting, for up to
 // max_coasting_frames; meanwhile the map is searched around the coasted pose
-// and relocalization is tried. After that the frame is lost; the next frames
-// try to relocalize against the whole map (relocalizer.h, when the tracker
-// has a keyframe index), then the last reference keyframe. When that keeps
-// failing (the camera went where the map has never been while it was
-// covered), a new map starts at the last pose there was (ORB-SLAM3's Atlas
-// idea, in one Map: the new map's first keyframe is an anchor, Map::SetAnchor);
+// and relocalization is tried; the first frame tracked again may move far
+// from the coasted pose only on a relocalization's support. After that the
+// frame is lost; the next frames try to relocalize against the whole map
+// (relocalizer.h, when the tracker has a keyframe index), then the last
+// reference keyframe. When that keeps failing (the camera went where the map
+// has never been while it was covered), a new map starts at the last pose
+// there was (ORB-SLAM3's Atlas idea, in one Map: the new map's first keyframe
+// is an anchor, Map::SetAnchor);
 // FindInOlderMaps / MergedIntoOlderMap let the system join it to the older
 // map once a frame relocalizes there.
 
@@ -341,7 +343,7 @@ class Tracker {
   KeyFrameId reference_keyframe_ = kNoId;
   int frames_since_keyframe_ = 0;
   int coasted_frames_ = 0;  // in a row, up to the current frame
-  int lost_frames_ = 0;     // in a row, up to the current frame
+  int lost_frames_ = 0;     // frames without a pose in a row, before the current one
   // First keyframes of the maps started after a loss and not merged, oldest first.
   std::vector<KeyFrameId> origins_;
   double last_timestamp_ = 0.0;  // of the last frame with a pose
