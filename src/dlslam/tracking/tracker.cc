@@ -125,13 +125,12 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
     }
     ok = result.inliers >= options_.min_local_map_inliers;
     // Only a tracked camera has a prediction worth trusting: not one just
-    // found again, whose pose may be off by more than a frame's motion.
-    if (ok && state_ == TrackingState::kOk && !result.relocalized && !last_pose_recovered_ &&
-        (departs || IsJump(pose, frame->timestamp()))) {
-      ok = false;
-      result.jump_refused = true;
-    }
-    if (ok && coasting && !result.relocalized && ImplausibleAfterCoasting(pose, result.inliers)) {
+    // found again, whose pose may be off by more than a frame's motion; a
+    // coasting one bounds how far the first frame back may move.
+    const bool tracked = state_ == TrackingState::kOk && !last_pose_recovered_;
+    if (ok && !result.relocalized &&
+        ((tracked && (departs || IsJump(pose, frame->timestamp()))) ||
+         (coasting && ImplausibleAfterCoasting(pose, result.inliers)))) {
       ok = false;
       result.jump_refused = true;
     }

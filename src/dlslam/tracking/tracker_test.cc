@@ -22,6 +22,28 @@ SE3d CamFromWorld(int i) {
   return SE3d::Exp(xi).Inverse();  // xi describes world_from_cam
 }
 
+// Distance between the camera centres of two cam_from_world poses [m].
+double CentreDistance(const SE3d& a, const SE3d& b) {
+  return (a.Inverse().translation() - b.Inverse().translation()).norm();
+}
+
+// A frame without keypoints at `timestamp`: the lens covered, a black image.
+std::shared_ptr<Frame> CoveredFrame(const testing::LandmarkScene& scene, double timestamp) {
+  return std::make_shared<Frame>(
+      Frame::Create(timestamp, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid));
+}
+
+// Tracks frames 0..frames-1 of the path in `scene`; fails on the first that is not kOk.
+::testing::AssertionResult TracksThePath(Tracker& tracker, const testing::LandmarkScene& scene, int frames) {
+  for (int i = 0; i < frames; ++i) {
+    const TrackingState state = tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state;
+    if (state != TrackingState::kOk) {
+      return ::testing::AssertionFailure() << "frame " << i << ": " << ToString(state);
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
 TEST(Tracker, FollowsASmoothPathAccurately) {
   const auto scene = testing::LandmarkScene::Room(6000, 3);
   Map map;
@@ -36,7 +58,7 @@ TEST(Tracker, FollowsASmoothPathAccurately) {
     // The first keyframe defines the world: compare relative to frame 0.
     const SE3d estimate_rel = *r.cam_from_world;
     const SE3d truth_rel = truth * CamFromWorld(0).Inverse();
-    const double err = (estimate_rel.Inverse().translation() - truth_rel.Inverse().translation()).norm();
+    const double err = CentreDistance(estimate_rel, truth_rel);
     max_error = std::max(max_error, err);
     keyframes += r.new_keyframe;
   }
@@ -118,8 +140,8 @@ TEST(Tracker, WaitsForDepthThenInitializes) {
   Tracker tracker(TrackerOptions(), &map);
   // A frame without depth cannot start the map.
   auto frame = scene.MakeFrame(CamFromWorld(0), 0.0, 1);
-  const Frame empty = Frame::Create(0.0, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
-  EXPECT_EQ(tracker.Track(std::make_shared<Frame>(empty)).state, TrackingState::kNotInitialized);
+  const std::shared_ptr<Frame> empty = CoveredFrame(scene, 0.0);
+  EXPECT_EQ(tracker.Track(empty).state, TrackingState::kNotInitialized);
   EXPECT_EQ(tracker.Track(frame).state, TrackingState::kOk);
   EXPECT_EQ(map.NumKeyFrames(), 1u);
 }
@@ -172,16 +194,16 @@ TEST(Tracker, ReportsLostAndRecoversThroughTheReferenceKeyFrame) {
   TrackerOptions options;
   options.max_coasting_frames = 0;  // a failure is lost at once
   Tracker tracker(options, &map);
-  for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+  ASSERT_TRUE(TracksThePath(tracker, scene, 10));
   // A black frame: nothing to match.
-  const Frame black = Frame::Create(0.4, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
-  EXPECT_EQ(tracker.Track(std::make_shared<Frame>(black)).state, TrackingState::kLost);
+  const std::shared_ptr<Frame> black = CoveredFrame(scene, 0.4);
+  EXPECT_EQ(tracker.Track(black).state, TrackingState::kLost);
   // The camera reappears nearby: tracking resumes and the pose is right.
   const SE3d truth = CamFromWorld(14);
   const TrackingResult r = tracker.Track(scene.MakeFrame(truth, 14 / 30.0, 99));
   ASSERT_EQ(r.state, TrackingState::kOk);
   const SE3d truth_rel = truth * CamFromWorld(0).Inverse();
-  EXPECT_LT((r.cam_from_world->Inverse().translation() - truth_rel.Inverse().translation()).norm(), 0.01);
+  EXPECT_LT(CentreDistance(*r.cam_from_world, truth_rel), 0.01);
 }
 
 // Found again after many lost frames, the last pose is from before the loss:
@@ -195,17 +217,17 @@ TEST(Tracker, NoMotionModelFromBeforeTheLoss) {
   options.max_coasting_frames = 0;
   options.new_map_after_lost_frames = 0;
   Tracker tracker(options, &map);
-  for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+  ASSERT_TRUE(TracksThePath(tracker, scene, 10));
   for (int i = 10; i < 40; ++i) {
-    const Frame black = Frame::Create(i / 30.0, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
-    ASSERT_EQ(tracker.Track(std::make_shared<Frame>(black)).state, TrackingState::kLost);
+    const std::shared_ptr<Frame> black = CoveredFrame(scene, i / 30.0);
+    ASSERT_EQ(tracker.Track(black).state, TrackingState::kLost);
   }
   ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(40), 40 / 30.0, 140)).state, TrackingState::kOk);
   const TrackingResult next = tracker.Track(scene.MakeFrame(CamFromWorld(41), 41 / 30.0, 141));
   EXPECT_FALSE(next.jump_refused);
   ASSERT_EQ(next.state, TrackingState::kOk);
   const SE3d truth = CamFromWorld(41) * CamFromWorld(0).Inverse();
-  EXPECT_LT((next.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm(), 0.005);
+  EXPECT_LT(CentreDistance(*next.cam_from_world, truth), 0.005);
 }
 
 // Found again after a loss at a pose `offset` off the path (a relocalization
@@ -224,9 +246,9 @@ TEST(Tracker, TheStepFromAPoorRecoveryIsNeitherVelocityNorJump) {
     options.max_coasting_frames = 0;
     options.new_map_after_lost_frames = 0;
     Tracker tracker(options, &map);
-    for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
-    const Frame black = Frame::Create(10 / 30.0, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
-    ASSERT_EQ(tracker.Track(std::make_shared<Frame>(black)).state, TrackingState::kLost);
+    ASSERT_TRUE(TracksThePath(tracker, scene, 10));
+    const std::shared_ptr<Frame> black = CoveredFrame(scene, 10 / 30.0);
+    ASSERT_EQ(tracker.Track(black).state, TrackingState::kLost);
     const SE3d off = SE3d(SO3d(), Eigen::Vector3d(0.0, 0.0, offset)) * CamFromWorld(11);
     ASSERT_EQ(tracker.Track(scene.MakeFrame(off, 11 / 30.0, 111)).state, TrackingState::kOk);
     for (int i = 12; i < 16; ++i) {
@@ -234,10 +256,10 @@ TEST(Tracker, TheStepFromAPoorRecoveryIsNeitherVelocityNorJump) {
       ASSERT_EQ(r.state, TrackingState::kOk) << i;
       EXPECT_FALSE(r.jump_refused) << i;
       const SE3d truth = CamFromWorld(i) * world_from_first;
-      EXPECT_LT((r.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm(), 0.005) << i;
+      EXPECT_LT(CentreDistance(*r.cam_from_world, truth), 0.005) << i;
       // The next prediction: within a frame's motion (1-2 cm) of the path.
       const SE3d next = CamFromWorld(i + 1) * world_from_first;
-      EXPECT_LT((tracker.PredictedCamFromWorld()->Inverse().translation() - next.Inverse().translation()).norm(), 0.03)
+      EXPECT_LT(CentreDistance(*tracker.PredictedCamFromWorld(), next), 0.03)
           << i;
     }
   }
@@ -256,7 +278,7 @@ TEST(Tracker, TheNthFrameWithoutAPoseStartsANewMap) {
     options.max_coasting_frames = 0;
     options.new_map_after_lost_frames = n;
     Tracker tracker(options, &map);
-    for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(here.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+    ASSERT_TRUE(TracksThePath(tracker, here, 10));
     const SE3d last = *tracker.PredictedCamFromWorld();
     int without_pose = 0;
     TrackingResult r;
@@ -269,7 +291,7 @@ TEST(Tracker, TheNthFrameWithoutAPoseStartsANewMap) {
     EXPECT_EQ(r.state, TrackingState::kOk);
     EXPECT_TRUE(tracker.new_map_origin().has_value());
     // Dead reckoning: the new map starts where the camera was last seen.
-    EXPECT_LT((r.cam_from_world->Inverse().translation() - last.Inverse().translation()).norm(), 0.05);
+    EXPECT_LT(CentreDistance(*r.cam_from_world, last), 0.05);
   }
 }
 
@@ -293,7 +315,7 @@ TEST(Tracker, EstimatePoseIsAccurateAndLeavesTheTrackerAsItWas) {
     ASSERT_TRUE(estimate.has_value());
     // Refined on the frame's keypoints: as close as tracking itself, far
     // closer than the 1-2 cm the camera moves per frame.
-    EXPECT_LT((estimate->Inverse().translation() - ra.cam_from_world->Inverse().translation()).norm(), 0.002)
+    EXPECT_LT(CentreDistance(*estimate, *ra.cam_from_world), 0.002)
         << "frame " << i;
   }
   EXPECT_EQ(map_a.NumMapPoints(), map_b.NumMapPoints());
@@ -303,21 +325,21 @@ TEST(Tracker, EstimatePoseFallsBackToTheMotionGuess) {
   const auto scene = testing::LandmarkScene::Room(6000, 7);
   Map map;
   Tracker tracker(TrackerOptions(), &map);
-  for (int i = 0; i < 5; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+  ASSERT_TRUE(TracksThePath(tracker, scene, 5));
   // Nothing to refine on: the constant-velocity guess, between the last pose and the true next one.
-  const Frame black = Frame::Create(0.2, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
-  const std::optional<SE3d> guess = tracker.EstimatePose(black);
+  const std::shared_ptr<Frame> black = CoveredFrame(scene, 0.2);
+  const std::optional<SE3d> guess = tracker.EstimatePose(*black);
   ASSERT_TRUE(guess.has_value());
   const SE3d truth_rel = CamFromWorld(5) * CamFromWorld(0).Inverse();
-  EXPECT_LT((guess->Inverse().translation() - truth_rel.Inverse().translation()).norm(), 0.005);
+  EXPECT_LT(CentreDistance(*guess, truth_rel), 0.005);
   EXPECT_EQ(tracker.state(), TrackingState::kOk);
   // Coasting through the black frames keeps an estimate; once lost there is none.
   for (int i = 0; i < TrackerOptions().max_coasting_frames; ++i) {
-    EXPECT_EQ(tracker.Track(std::make_shared<Frame>(black)).state, TrackingState::kCoasting);
-    EXPECT_TRUE(tracker.EstimatePose(black).has_value());
+    EXPECT_EQ(tracker.Track(black).state, TrackingState::kCoasting);
+    EXPECT_TRUE(tracker.EstimatePose(*black).has_value());
   }
-  EXPECT_EQ(tracker.Track(std::make_shared<Frame>(black)).state, TrackingState::kLost);
-  EXPECT_FALSE(tracker.EstimatePose(black).has_value());
+  EXPECT_EQ(tracker.Track(black).state, TrackingState::kLost);
+  EXPECT_FALSE(tracker.EstimatePose(*black).has_value());
 }
 
 // People covering the view for a few frames: the frames coast on the motion
@@ -327,25 +349,25 @@ TEST(Tracker, CoastsThroughAShortOcclusion) {
   const auto scene = testing::LandmarkScene::Room(6000, 8);
   Map map;
   Tracker tracker(TrackerOptions(), &map);
-  for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+  ASSERT_TRUE(TracksThePath(tracker, scene, 10));
   const std::size_t keyframes = map.NumKeyFrames();
   const SE3d world_from_first = CamFromWorld(0).Inverse();
   for (int i = 10; i < 16; ++i) {
-    const Frame covered = Frame::Create(i / 30.0, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
-    const TrackingResult r = tracker.Track(std::make_shared<Frame>(covered));
+    const std::shared_ptr<Frame> covered = CoveredFrame(scene, i / 30.0);
+    const TrackingResult r = tracker.Track(covered);
     ASSERT_EQ(r.state, TrackingState::kCoasting) << "frame " << i;
     ASSERT_TRUE(r.cam_from_world.has_value());
     EXPECT_FALSE(r.new_keyframe);
     // The constant-velocity extrapolation of a smooth path: within 1 cm.
     const SE3d truth = CamFromWorld(i) * world_from_first;
-    EXPECT_LT((r.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm(), 0.01) << i;
+    EXPECT_LT(CentreDistance(*r.cam_from_world, truth), 0.01) << i;
   }
   EXPECT_EQ(map.NumKeyFrames(), keyframes);
   const TrackingResult back = tracker.Track(scene.MakeFrame(CamFromWorld(16), 16 / 30.0, 99));
   ASSERT_EQ(back.state, TrackingState::kOk);
   EXPECT_FALSE(back.relocalized);
   const SE3d truth = CamFromWorld(16) * world_from_first;
-  EXPECT_LT((back.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm(), 0.005);
+  EXPECT_LT(CentreDistance(*back.cam_from_world, truth), 0.005);
 }
 
 // The frame before an occlusion tracked 8 cm off the smooth path (below the
@@ -361,18 +383,18 @@ TEST(Tracker, CoastsOnTheRecentMotionNotOnTheLastStep) {
     TrackerOptions options;
     options.coasting_velocity_frames = frames;
     Tracker tracker(options, &map);
-    for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+    ASSERT_TRUE(TracksThePath(tracker, scene, 10));
     const SE3d pulled = SE3d(SO3d(), Eigen::Vector3d(0.08, 0.0, 0.0)) * CamFromWorld(10);
     const TrackingResult r10 = tracker.Track(scene.MakeFrame(pulled, 10 / 30.0, 60));
     ASSERT_EQ(r10.state, TrackingState::kOk);
     ASSERT_FALSE(r10.jump_refused);
     double error = 0;
     for (int i = 11; i < 16; ++i) {
-      const Frame covered = Frame::Create(i / 30.0, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
-      const TrackingResult r = tracker.Track(std::make_shared<Frame>(covered));
+      const std::shared_ptr<Frame> covered = CoveredFrame(scene, i / 30.0);
+      const TrackingResult r = tracker.Track(covered);
       ASSERT_EQ(r.state, TrackingState::kCoasting) << "frame " << i;
       const SE3d truth = CamFromWorld(i) * world_from_first;
-      error = (r.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm();
+      error = CentreDistance(*r.cam_from_world, truth);
     }
     if (frames == 10) {
       EXPECT_LT(error, 0.1);  // the 8 cm it was pulled, and no more
@@ -390,22 +412,22 @@ TEST(Tracker, TheCorrectionAfterCoastingIsNotTakenAsTheVelocity) {
   const auto scene = testing::LandmarkScene::Room(6000, 12);
   Map map;
   Tracker tracker(TrackerOptions(), &map);
-  for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+  ASSERT_TRUE(TracksThePath(tracker, scene, 10));
   const SE3d velocity = CamFromWorld(9) * CamFromWorld(8).Inverse();
   for (int i = 10; i < 16; ++i) {
-    const Frame covered = Frame::Create(i / 30.0, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
-    ASSERT_EQ(tracker.Track(std::make_shared<Frame>(covered)).state, TrackingState::kCoasting) << "frame " << i;
+    const std::shared_ptr<Frame> covered = CoveredFrame(scene, i / 30.0);
+    ASSERT_EQ(tracker.Track(covered).state, TrackingState::kCoasting) << "frame " << i;
   }
   // Seen again where it stopped, at frame 9's pose: 6 frames' motion back.
   const TrackingResult back = tracker.Track(scene.MakeFrame(CamFromWorld(9), 16 / 30.0, 70));
   ASSERT_EQ(back.state, TrackingState::kOk);
   const SE3d world_from_first = CamFromWorld(0).Inverse();
   const SE3d stopped = CamFromWorld(9) * world_from_first;
-  ASSERT_LT((back.cam_from_world->Inverse().translation() - stopped.Inverse().translation()).norm(), 0.005);
+  ASSERT_LT(CentreDistance(*back.cam_from_world, stopped), 0.005);
   const SE3d step = velocity * *back.cam_from_world;  // what the motion before says
   const std::optional<SE3d> predicted = tracker.PredictedCamFromWorld();
   ASSERT_TRUE(predicted.has_value());
-  EXPECT_LT((predicted->Inverse().translation() - step.Inverse().translation()).norm(), 0.003);
+  EXPECT_LT(CentreDistance(*predicted, step), 0.003);
   EXPECT_GT(velocity.translation().norm(), 0.005);  // the test moves: a jump would be 6 times that
 }
 
@@ -424,15 +446,15 @@ TEST(Tracker, AFarPoseAfterCoastingNeedsARelocalizationsSupport) {
     SCOPED_TRACE(supported);
     Map map;
     Tracker tracker(TrackerOptions(), &map);
-    for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+    ASSERT_TRUE(TracksThePath(tracker, scene, 10));
     for (int i = 10; i < 13; ++i) {
-      const Frame covered = Frame::Create(i / 30.0, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid);
-      ASSERT_EQ(tracker.Track(std::make_shared<Frame>(covered)).state, TrackingState::kCoasting) << i;
+      const std::shared_ptr<Frame> covered = CoveredFrame(scene, i / 30.0);
+      ASSERT_EQ(tracker.Track(covered).state, TrackingState::kCoasting) << i;
     }
     const SE3d off = SE3d(SO3d(), Eigen::Vector3d(0.3, 0.0, 0.0)) * CamFromWorld(13);
     const TrackingResult r = tracker.Track((supported ? scene : few).MakeFrame(off, 13 / 30.0, 113));
     const SE3d truth = CamFromWorld(13) * world_from_first;
-    const double error = (r.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm();
+    const double error = CentreDistance(*r.cam_from_world, truth);
     if (supported) {
       ASSERT_EQ(r.state, TrackingState::kOk);
       EXPECT_GT(r.inliers, TrackerOptions().relocalization.min_inliers);
@@ -446,7 +468,7 @@ TEST(Tracker, AFarPoseAfterCoastingNeedsARelocalizationsSupport) {
       const TrackingResult back = tracker.Track(scene.MakeFrame(CamFromWorld(14), 14 / 30.0, 114));
       ASSERT_EQ(back.state, TrackingState::kOk);
       const SE3d truth14 = CamFromWorld(14) * world_from_first;
-      EXPECT_LT((back.cam_from_world->Inverse().translation() - truth14.Inverse().translation()).norm(), 0.005);
+      EXPECT_LT(CentreDistance(*back.cam_from_world, truth14), 0.005);
     }
   }
 }
@@ -489,7 +511,7 @@ TEST(Tracker, AGatedPoseStaysOnWhatThePredictionExplains) {
     options.gate_departure_m = gate;
     options.gate_departure_deg = gate > 0 ? 2.0 : 0.0;
     Tracker tracker(options, &map);
-    for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(still.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+    ASSERT_TRUE(TracksThePath(tracker, still, 10));
     double error = 0;
     bool gated = false;
     for (int i = 10; i < 13; ++i) {
@@ -497,7 +519,7 @@ TEST(Tracker, AGatedPoseStaysOnWhatThePredictionExplains) {
       ASSERT_EQ(r.state, TrackingState::kOk) << i;
       gated |= r.gated;
       const SE3d truth = CamFromWorld(i) * world_from_first;
-      error = std::max(error, (r.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm());
+      error = std::max(error, CentreDistance(*r.cam_from_world, truth));
     }
     if (gate > 0) {
       EXPECT_TRUE(gated);
@@ -520,7 +542,7 @@ TEST(Tracker, AGatedFrameMakesNoKeyFrame) {
   TrackerOptions options;
   options.max_frames_between_keyframes = 1;
   Tracker tracker(options, &map);
-  for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(still.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+  ASSERT_TRUE(TracksThePath(tracker, still, 10));
   int gated = 0;
   for (int i = 10; i < 13; ++i) {
     const TrackingResult r = tracker.Track(stepped.MakeFrame(CamFromWorld(i), i / 30.0, 80 + i));
@@ -548,14 +570,14 @@ TEST(Tracker, TheMedianMotionGateLetsGoOfAPullThatHasEnded) {
     TrackerOptions options;
     options.gate_on_median_motion = median;
     Tracker tracker(options, &map);
-    for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(still.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+    ASSERT_TRUE(TracksThePath(tracker, still, 10));
     std::vector<double> error;
     for (int i = 10; i < 14; ++i) {
       const TrackingResult r = tracker.Track((i == 10 ? stepped : still).MakeFrame(CamFromWorld(i), i / 30.0, 80 + i));
       ASSERT_EQ(r.state, TrackingState::kOk) << i;
       EXPECT_FALSE(r.new_keyframe && r.gated) << i;
       const SE3d truth = CamFromWorld(i) * world_from_first;
-      error.push_back((r.cam_from_world->Inverse().translation() - truth.Inverse().translation()).norm());
+      error.push_back(CentreDistance(*r.cam_from_world, truth));
     }
     EXPECT_GT(error[0], 0.015) << "the step pulls the pose";
     if (median) {
@@ -575,7 +597,7 @@ TEST(Tracker, RefusesAPoseTooFarFromTheMotionModel) {
   const auto scene = testing::LandmarkScene::Room(6000, 9);
   Map map;
   Tracker tracker(TrackerOptions(), &map);
-  for (int i = 0; i < 10; ++i) ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state, TrackingState::kOk);
+  ASSERT_TRUE(TracksThePath(tracker, scene, 10));
   const SE3d world_from_first = CamFromWorld(0).Inverse();
   const SE3d shifted = SE3d(SO3d(), Eigen::Vector3d(0.6, 0.0, 0.0)) * CamFromWorld(10);
   const TrackingResult jump = tracker.Track(scene.MakeFrame(shifted, 10 / 30.0, 50));
@@ -583,12 +605,12 @@ TEST(Tracker, RefusesAPoseTooFarFromTheMotionModel) {
   ASSERT_EQ(jump.state, TrackingState::kCoasting);
   EXPECT_FALSE(jump.new_keyframe);
   const SE3d truth10 = CamFromWorld(10) * world_from_first;
-  EXPECT_LT((jump.cam_from_world->Inverse().translation() - truth10.Inverse().translation()).norm(), 0.01);
+  EXPECT_LT(CentreDistance(*jump.cam_from_world, truth10), 0.01);
   const TrackingResult back = tracker.Track(scene.MakeFrame(CamFromWorld(11), 11 / 30.0, 51));
   ASSERT_EQ(back.state, TrackingState::kOk);
   EXPECT_FALSE(back.jump_refused);
   const SE3d truth11 = CamFromWorld(11) * world_from_first;
-  EXPECT_LT((back.cam_from_world->Inverse().translation() - truth11.Inverse().translation()).norm(), 0.005);
+  EXPECT_LT(CentreDistance(*back.cam_from_world, truth11), 0.005);
 }
 
 }  // namespace
