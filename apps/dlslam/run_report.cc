@@ -35,6 +35,12 @@ nlohmann::ordered_json DynamicReport(const RunStats& stats) {
   j["inverted_checks_tried"] = d.inverted_checks_tried;
   j["inverted_checks_resolved"] = d.inverted_checks_resolved;
   j["geometry_overruled"] = d.geometry_overruled;
+  j["free_space_frames"] = d.free_space_frames;
+  j["free_space_views_ignored"] = d.free_space_views_ignored;
+  j["free_space_image_share"] =
+      d.free_space_frames > 0 ? nlohmann::ordered_json(d.free_space_share_sum / static_cast<double>(d.free_space_frames))
+                              : nlohmann::ordered_json();
+  j["free_space_ms"] = StageSummary(stats, "free_space");
   j["geometry_ms"] = StageSummary(stats, "geometry");
   j["semantic_ms"] = StageSummary(stats, "semantic");
   j["semantic_wait_ms"] = StageSummary(stats, "semantic_wait");

@@ -216,6 +216,19 @@ void Visit(dynamic::GeometryOptions& o, V& v) {
   v.End();
   v.Value("grow_from_vanished", o.grow_from_vanished, {"", "grow regions from vanished points too"});
   v.Value("vanished_as_barriers", o.vanished_as_barriers, {"", "vanished points stop static regions"});
+  v.Begin("free_space", "the dense check: depth standing where recent frames saw through");
+  v.Value("enabled", o.free_space.enabled, {"", "run it (modes geometry and full)"});
+  v.Value("cell_px", o.free_space.cell_px, {"px", "grid cell side"});
+  v.Value("view_every_frames", o.free_space.view_every_frames, {"frames", "one tracked frame in this many is kept as a view"});
+  v.Value("max_views", o.free_space.max_views, {"views", "kept, the oldest dropped"});
+  v.Value("neighbourhood_cells", o.free_space.neighbourhood_cells, {"cells", "the nearest kept depth this near the projection counts"});
+  v.Value("depth_threshold_m", o.free_space.depth_threshold_m, {"m", "seen through by more than this at 0 m"});
+  v.Value("depth_threshold_per_m2", o.free_space.depth_threshold_per_m2, {"1/m", "... plus this times depth^2"});
+  v.Value("min_region_cells", o.free_space.min_region_cells, {"cells", "smaller connected violations are noise"});
+  v.Value("max_violated_share", o.free_space.max_violated_share, {"", "a view violated on more of the compared cells is misposed: ignored"});
+  v.Value("min_depth_m", o.free_space.min_depth_m, {"m", "nearer depth is not used"});
+  v.Value("max_depth_m", o.free_space.max_depth_m, {"m", "farther depth is not used"});
+  v.End();
 }
 
 void Visit(DynamicOptions& o, V& v) {

@@ -19,6 +19,7 @@ void GeometryOptions::Check() const {
   multiview.Check();
   ant.Check();
   region.Check();
+  free_space.Check();
 }
 
 GeometryDetector::GeometryDetector(const GeometryOptions& options) : options_(options) {
@@ -36,7 +37,8 @@ GeometryDetector& GeometryDetector::operator=(GeometryDetector&&) noexcept = def
 
 GeometryResult GeometryDetector::Detect(const cv::Mat& depth, const CameraIntrinsics& intrinsics,
                                         const SE3d& cam_from_world,
-                                        const std::vector<ReferenceView>& references) {
+                                        const std::vector<ReferenceView>& references,
+                                        const cv::Mat& moved_in) {
   DLSLAM_CHECK(depth.type() == CV_32FC1,
                "GeometryDetector: depth must be CV_32FC1 metres, got OpenCV type {}", depth.type());
   DLSLAM_CHECK(depth.cols == intrinsics.width && depth.rows == intrinsics.height,
@@ -78,7 +80,21 @@ GeometryResult GeometryDetector::Detect(const cv::Mat& depth, const CameraIntrin
       if (id != std::numeric_limits<std::uint64_t>::max()) result.vanished_ids.push_back(id);
     }
   }
+  if (!moved_in.empty()) {
+    DLSLAM_CHECK(moved_in.type() == CV_8UC1 && moved_in.size() == depth.size(),
+                 "GeometryDetector: moved_in must be CV_8UC1 {}x{}, got type {} {}x{}", depth.cols, depth.rows,
+                 moved_in.type(), moved_in.cols, moved_in.rows);
+    // One seed per cell of the dense check is plenty: the fill joins them.
+    constexpr int kSeedStep = 4;  // [px]
+    for (int v = kSeedStep / 2; v < moved_in.rows; v += kSeedStep) {
+      const auto* row = moved_in.ptr<std::uint8_t>(v);
+      for (int u = kSeedStep / 2; u < moved_in.cols; u += kSeedStep) {
+        if (row[u] != 0) seeds.emplace_back(static_cast<float>(u), static_cast<float>(v));
+      }
+    }
+  }
   result.dynamic_mask = GrowDynamicRegions(depth, intrinsics, seeds, barriers, options_.region);
+  if (!moved_in.empty()) result.dynamic_mask |= moved_in;
   return result;
 }
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "dlslam/data/camera.h"
+#include "dlslam/dynamic/free_space.h"
 #include "dlslam/dynamic/multiview.h"
 #include "dlslam/dynamic/point_search.h"
 #include "dlslam/dynamic/region_growing.h"
@@ -40,6 +41,9 @@ struct GeometryOptions {
   // it: use it as static evidence (a barrier for region growing) like the
   // static points. Ignored when grow_from_vanished.
   bool vanished_as_barriers = true;
+  // The dense free-space check against recent frames (free_space.h); its
+  // violations seed the region growing and are removed themselves.
+  FreeSpaceOptions free_space;
 
   // Throws dlslam::Error naming the field and its value.
   void Check() const;
@@ -67,10 +71,14 @@ class GeometryDetector {
 
   // `depth`: CV_32FC1 metres of the current frame, intrinsics.width x height.
   // `references`: earlier keyframes, most relevant first (only the first
-  // multiview.max_reference_views are used). Throws dlslam::Error on a depth
-  // image of the wrong type or size.
+  // multiview.max_reference_views are used). `moved_in`: CV_8UC1 of the
+  // depth's size (or empty), non-zero where something is known to have moved
+  // in (FreeSpaceCheck::Violations): dynamic seeds every few pixels, and
+  // part of the result. Throws dlslam::Error on a depth image of the wrong
+  // type or size.
   GeometryResult Detect(const cv::Mat& depth, const CameraIntrinsics& intrinsics,
-                        const SE3d& cam_from_world, const std::vector<ReferenceView>& references);
+                        const SE3d& cam_from_world, const std::vector<ReferenceView>& references,
+                        const cv::Mat& moved_in = {});
 
   const GeometryOptions& options() const { return options_; }
 

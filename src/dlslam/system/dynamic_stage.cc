@@ -47,7 +47,8 @@ DynamicStage::DynamicStage(const DynamicOptions& options, const CameraIntrinsics
       map_(map),
       tracker_(tracker),
       timings_(timings),
-      detector_(options.geometry) {
+      detector_(options.geometry),
+      free_space_(camera, options.geometry.free_space) {
   options_.Check();
   DLSLAM_CHECK(map_ != nullptr && tracker_ != nullptr && timings_ != nullptr);
   stats_.mode = options_.mode;
@@ -156,14 +157,15 @@ dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, co
   DLSLAM_CHECK(depth.type() == CV_32FC1 && depth.cols == camera_.width && depth.rows == camera_.height,
                "depth must be float metres {}x{}", camera_.width, camera_.height);
   const std::optional<SE3d> cam_from_world = tracker_->EstimatePose(frame);
-  if (!cam_from_world) return {};  // not tracking: no pose to project with
+  if (!cam_from_world) return {};
   const std::size_t n = static_cast<std::size_t>(options_.geometry.multiview.max_reference_views);
   std::vector<dynamic::ReferenceView> views;
   for (const KeyFrameSnapshot& kf : map_->GetCovisibleKeyFrames(tracker_->reference_keyframe(), n)) {
     views.push_back(MakeReferenceView(kf));
   }
   if (views.empty()) return {};
-  dynamic::GeometryResult result = detector_.Detect(depth, camera_, *cam_from_world, views);
+  dynamic::GeometryResult result =
+      detector_.Detect(depth, camera_, *cam_from_world, views, MovedIn(depth, *cam_from_world, /*count=*/true));
   const auto share_of_image = [](const cv::Mat& mask) {
     return cv::countNonZero(mask) / static_cast<double>(mask.total());
   };
@@ -174,7 +176,7 @@ dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, co
     // and keep the labelling that leaves the larger part of the image static.
     const std::optional<SE3d> other = tracker_->EstimatePose(frame.Subset(frame.OnMask(result.dynamic_mask)));
     if (other) {
-      dynamic::GeometryResult alternative = detector_.Detect(depth, camera_, *other, views);
+      dynamic::GeometryResult alternative = detector_.Detect(depth, camera_, *other, views, MovedIn(depth, *other, /*count=*/false));
       ++stats_.inverted_checks_tried;
       if (share_of_image(alternative.dynamic_mask) < share) {
         result = std::move(alternative);
@@ -193,6 +195,33 @@ dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, co
     stats_.map_points_culled += map_->ErasePoints(doomed);
   }
   return result;
+}
+
+cv::Mat DynamicStage::MovedIn(const cv::Mat& depth, const SE3d& cam_from_world, bool count) {
+  if (!options_.geometry.free_space.enabled || free_space_.views() == 0) return {};
+  if (map_->Generation() != free_space_generation_) {
+    // The views' poses are from before a map correction.
+    free_space_.Reset();
+    return {};
+  }
+  Stopwatch watch;
+  dynamic::FreeSpaceStats stats;
+  cv::Mat violations = free_space_.Violations(depth, cam_from_world, &stats);
+  timings_->Add("free_space", watch.ElapsedMs());
+  if (!count) return violations;
+  ++stats_.free_space_frames;
+  stats_.free_space_views_ignored += stats.views_ignored;
+  if (!violations.empty()) stats_.free_space_share_sum += cv::countNonZero(violations) / static_cast<double>(violations.total());
+  return violations;
+}
+
+void DynamicStage::OfferView(const cv::Mat& depth, const SE3d& cam_from_world) {
+  if (!UsesGeometry(options_.mode) || !options_.geometry.free_space.enabled || depth.empty()) return;
+  if (map_->Generation() != free_space_generation_) {
+    free_space_.Reset();
+    free_space_generation_ = map_->Generation();
+  }
+  free_space_.Offer(depth, cam_from_world);
 }
 
 void DynamicStage::CountAgainstTruth(const Frame& frame, const std::vector<bool>& removed_flags,

@@ -59,6 +59,12 @@ struct DynamicStats {
   // Mode full: frames whose geometric mask was set aside because it took
   // most of what the prior left (DynamicOptions::max_geometry_share_of_prior_static).
   std::int64_t geometry_overruled = 0;
+  // The dense free-space check (GeometryOptions::free_space): frames it ran
+  // on, kept views it ignored as misposed, and the image share it found
+  // moved in (summed over the frames; divide by free_space_frames).
+  std::int64_t free_space_frames = 0;
+  std::int64_t free_space_views_ignored = 0;
+  double free_space_share_sum = 0.0;
   // Per keypoint of every frame with ground truth: removed and moving (true
   // positive), removed and still (false positive), kept and moving (false negative).
   std::int64_t frames_with_truth = 0;
@@ -130,6 +136,12 @@ class DynamicStage {
   // TakePrior and Process in one, for a frame extracted without its prior.
   DynamicRemoval Process(const Frame& frame, const cv::Mat& depth, const DynamicInputs& inputs);
 
+  // A tracked frame's depth (CV_32FC1 metres) at its pose, for the dense
+  // free-space check of the frames after it (GeometryOptions::free_space);
+  // SlamSystem offers every tracked frame that was not gated. A map
+  // correction (loop closing, a merge) forgets the views offered before it.
+  void OfferView(const cv::Mat& depth, const SE3d& cam_from_world);
+
   const DynamicStats& stats() const { return stats_; }
 
  private:
@@ -143,6 +155,9 @@ class DynamicStage {
   // Mode full: replaces `fused` (prior and geometry) by the prior's removal
   // alone when GeometryTakesTooMuch; true if it did.
   bool OverruleFailedGeometry(const Frame& frame, const DynamicPrior& prior, cv::Mat* fused);
+  // The dense check's violations at `cam_from_world` (empty: none, or no
+  // view); `count`: into the stats (the first estimate's, not a retry's).
+  cv::Mat MovedIn(const cv::Mat& depth, const SE3d& cam_from_world, bool count);
   void CountAgainstTruth(const Frame& frame, const std::vector<bool>& removed, const cv::Mat& truth);
 
   DynamicOptions options_;
@@ -151,6 +166,8 @@ class DynamicStage {
   const Tracker* tracker_;
   StageTimings* timings_;
   dynamic::GeometryDetector detector_;
+  dynamic::FreeSpaceCheck free_space_;
+  std::uint64_t free_space_generation_ = 0;  // the map generation of its views
   DynamicStats stats_;
 };
 

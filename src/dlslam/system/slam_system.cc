@@ -244,6 +244,10 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
       tracker_.Track(frame, /*hold_keyframe=*/masks.carried && options_.semantic.keyframes_wait_for_own_masks);
   timings_.Add("tracking", watch.ElapsedMs());
   if (semantic_) semantic_->SetPose(frame_id, result.cam_from_world);
+  // A gated pose disagreed with its own matches: not a view to test against.
+  if (result.state == TrackingState::kOk && result.cam_from_world && !result.gated) {
+    dynamic_.OfferView(depth, *result.cam_from_world);
+  }
   if (result.held_keyframe && !held_keyframe_) {  // one at a time: a second one is simply not made
     HeldKeyFrame held;
     held.candidate = *result.held_keyframe;

@@ -1,0 +1,169 @@
+#include "dlslam/dynamic/free_space.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "dlslam/util/check.h"
+
+namespace dlslam::dynamic {
+
+void FreeSpaceOptions::Check() const {
+  DLSLAM_CHECK(cell_px >= 1 && cell_px <= 32, "free space: cell_px must be in [1, 32], got {}", cell_px);
+  DLSLAM_CHECK(view_every_frames >= 1, "free space: view_every_frames must be >= 1, got {}", view_every_frames);
+  DLSLAM_CHECK(max_views >= 1, "free space: max_views must be >= 1, got {}", max_views);
+  DLSLAM_CHECK(neighbourhood_cells >= 0 && neighbourhood_cells <= 16,
+               "free space: neighbourhood_cells must be in [0, 16], got {}", neighbourhood_cells);
+  DLSLAM_CHECK(depth_threshold_m >= 0 && depth_threshold_per_m2 >= 0,
+               "free space: the depth thresholds must be >= 0, got {} m and {} 1/m", depth_threshold_m,
+               depth_threshold_per_m2);
+  DLSLAM_CHECK(min_region_cells >= 1, "free space: min_region_cells must be >= 1, got {}", min_region_cells);
+  DLSLAM_CHECK(max_violated_share > 0 && max_violated_share <= 1,
+               "free space: max_violated_share must be in (0, 1], got {}", max_violated_share);
+  DLSLAM_CHECK(min_depth_m > 0 && max_depth_m > min_depth_m,
+               "free space: need 0 < min_depth_m < max_depth_m, got {} and {}", min_depth_m, max_depth_m);
+}
+
+FreeSpaceCheck::FreeSpaceCheck(const CameraIntrinsics& camera, const FreeSpaceOptions& options)
+    : camera_(camera), options_(options) {
+  options_.Check();
+  const int cell = options_.cell_px;
+  cells_ = cv::Size((camera.width + cell - 1) / cell, (camera.height + cell - 1) / cell);
+  const std::vector<Eigen::Vector2f> pixel_rays = PixelRays(camera);
+  rays_.reserve(static_cast<std::size_t>(cells_.area()));
+  for (int cy = 0; cy < cells_.height; ++cy) {
+    for (int cx = 0; cx < cells_.width; ++cx) {
+      const int u = std::min(camera.width - 1, cx * cell + cell / 2);
+      const int v = std::min(camera.height - 1, cy * cell + cell / 2);
+      rays_.push_back(pixel_rays[static_cast<std::size_t>(v * camera.width + u)]);
+    }
+  }
+}
+
+void FreeSpaceCheck::CheckDepth(const cv::Mat& depth) const {
+  DLSLAM_CHECK(depth.type() == CV_32FC1 && depth.cols == camera_.width && depth.rows == camera_.height,
+               "free space: depth must be CV_32FC1 {}x{}, got type {} {}x{}", camera_.width, camera_.height,
+               depth.type(), depth.cols, depth.rows);
+}
+
+void FreeSpaceCheck::Reset() {
+  views_.clear();
+  offered_ = 0;
+}
+
+void FreeSpaceCheck::Offer(const cv::Mat& depth, const SE3d& cam_from_world) {
+  CheckDepth(depth);
+  if (offered_++ % options_.view_every_frames != 0) return;
+  const int cell = options_.cell_px;
+  const auto valid = [this](float d) {
+    return std::isfinite(d) && d >= options_.min_depth_m && d <= options_.max_depth_m;
+  };
+  // The nearest depth of each cell; a cell mostly without depth is unknown
+  // (0), and so is every neighbourhood that holds it: a hole may hide a
+  // nearer surface.
+  cv::Mat nearest(cells_, CV_32FC1, cv::Scalar(0));
+  for (int cy = 0; cy < cells_.height; ++cy) {
+    for (int cx = 0; cx < cells_.width; ++cx) {
+      float best = INFINITY;
+      int seen = 0, total = 0;
+      for (int v = cy * cell; v < std::min(camera_.height, (cy + 1) * cell); ++v) {
+        const float* row = depth.ptr<float>(v);
+        for (int u = cx * cell; u < std::min(camera_.width, (cx + 1) * cell); ++u) {
+          ++total;
+          if (!valid(row[u])) continue;
+          ++seen;
+          best = std::min(best, row[u]);
+        }
+      }
+      if (2 * seen >= total && seen > 0) nearest.at<float>(cy, cx) = best;
+    }
+  }
+  if (const int n = options_.neighbourhood_cells; n > 0) {
+    cv::erode(nearest, nearest, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * n + 1, 2 * n + 1)),
+              cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  }
+  views_.push_back({cam_from_world, nearest});
+  while (views_.size() > static_cast<std::size_t>(options_.max_views)) views_.pop_front();
+}
+
+cv::Mat FreeSpaceCheck::CentreDepths(const cv::Mat& depth) const {
+  cv::Mat centre(cells_, CV_32FC1, cv::Scalar(0));
+  const int cell = options_.cell_px;
+  for (int cy = 0; cy < cells_.height; ++cy) {
+    const int v = std::min(camera_.height - 1, cy * cell + cell / 2);
+    for (int cx = 0; cx < cells_.width; ++cx) {
+      const float d = depth.at<float>(v, std::min(camera_.width - 1, cx * cell + cell / 2));
+      if (std::isfinite(d) && d >= options_.min_depth_m && d <= options_.max_depth_m) centre.at<float>(cy, cx) = d;
+    }
+  }
+  return centre;
+}
+
+cv::Mat FreeSpaceCheck::Violations(const cv::Mat& depth, const SE3d& cam_from_world, FreeSpaceStats* stats) const {
+  CheckDepth(depth);
+  FreeSpaceStats local;
+  FreeSpaceStats& s = stats != nullptr ? *stats : local;
+  s = FreeSpaceStats{};
+  s.views = views();
+  if (views_.empty()) return {};
+  const cv::Mat centre = CentreDepths(depth);
+  const int cell = options_.cell_px;
+  cv::Mat violated(cells_, CV_8UC1, cv::Scalar(0));
+  cv::Mat in_view(cells_, CV_8UC1);
+  const SE3d world_from_cam = cam_from_world.Inverse();
+  for (const View& view : views_) {
+    const SE3d view_from_cam = view.cam_from_world * world_from_cam;
+    const Eigen::Matrix3d rotation = view_from_cam.rotationMatrix();
+    const Eigen::Vector3d translation = view_from_cam.translation();
+    in_view.setTo(0);
+    int compared = 0, through = 0;
+    for (int cy = 0; cy < cells_.height; ++cy) {
+      const float* z_row = centre.ptr<float>(cy);
+      for (int cx = 0; cx < cells_.width; ++cx) {
+        const float z = z_row[cx];
+        if (z <= 0) continue;
+        const Eigen::Vector2f& ray = rays_[static_cast<std::size_t>(cy * cells_.width + cx)];
+        const Eigen::Vector3d p = rotation * Eigen::Vector3d(ray.x() * z, ray.y() * z, z) + translation;
+        if (p.z() < options_.min_depth_m) continue;
+        const Eigen::Vector2d xd = camera_.Distort(Eigen::Vector2d(p.x() / p.z(), p.y() / p.z()));
+        const double u = camera_.fx * xd.x() + camera_.cx, v = camera_.fy * xd.y() + camera_.cy;
+        if (!(u >= 0 && u < camera_.width && v >= 0 && v < camera_.height)) continue;
+        const float seen = view.nearest.at<float>(static_cast<int>(v) / cell, static_cast<int>(u) / cell);
+        if (seen <= 0) continue;
+        ++compared;
+        const double threshold = options_.depth_threshold_m + options_.depth_threshold_per_m2 * p.z() * p.z();
+        if (seen - p.z() > threshold) {
+          ++through;
+          in_view.at<std::uint8_t>(cy, cx) = 255;
+        }
+      }
+    }
+    if (compared == 0) continue;
+    if (through > options_.max_violated_share * compared) {
+      ++s.views_ignored;
+      continue;
+    }
+    s.cells_compared += compared;
+    violated |= in_view;
+  }
+  // Small blobs are depth noise or a pose a little off at an edge.
+  cv::Mat labels, blob_stats, centroids;
+  const int n = cv::connectedComponentsWithStats(violated, labels, blob_stats, centroids, 8, CV_32S);
+  std::vector<std::uint8_t> keep(static_cast<std::size_t>(n), 0);
+  for (int i = 1; i < n; ++i) {
+    keep[static_cast<std::size_t>(i)] = blob_stats.at<int>(i, cv::CC_STAT_AREA) >= options_.min_region_cells;
+  }
+  for (int cy = 0; cy < cells_.height; ++cy) {
+    const int* l = labels.ptr<int>(cy);
+    auto* m = violated.ptr<std::uint8_t>(cy);
+    for (int cx = 0; cx < cells_.width; ++cx) {
+      m[cx] = keep[static_cast<std::size_t>(l[cx])] ? 255 : 0;
+      s.cells_violated += m[cx] != 0;
+    }
+  }
+  cv::Mat full;
+  cv::resize(violated, full, cv::Size(cells_.width * cell, cells_.height * cell), 0, 0, cv::INTER_NEAREST);
+  return full(cv::Rect(0, 0, camera_.width, camera_.height)).clone();
+}
+
+}  // namespace dlslam::dynamic
