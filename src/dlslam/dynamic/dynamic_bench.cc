@@ -5,6 +5,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "dlslam/dynamic/free_space.h"
 #include "dlslam/dynamic/geometry_detector.h"
 #include "dlslam/dynamic/mask_warp.h"
 #include "dlslam/dynamic/tools/keyframe_eval.h"
@@ -19,6 +20,7 @@ struct Fixture {
   SE3d cam_from_world;
   CameraIntrinsics camera;
   std::vector<ReferenceView> references;
+  std::vector<std::pair<cv::Mat, SE3d>> views;  // frames 45, 50, 55: depth, cam_from_world
 };
 
 const Fixture& GetFixture() {
@@ -38,6 +40,10 @@ const Fixture& GetFixture() {
       f.references.push_back(evaluation::MakeReferenceView(
           keyframe.rendered.depth, keyframe.keypoints, f.camera, keyframe.rendered.world_from_cam,
           static_cast<std::uint64_t>(r) << 20));
+    }
+    for (const int k : {45, 50, 55}) {
+      const auto& view = cache.Get(k);
+      f.views.emplace_back(view.rendered.depth, view.rendered.world_from_cam.Inverse());
     }
     return f;
   }();
@@ -112,5 +118,42 @@ void BM_MaskWarp(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(warper.Warp(mask, depth, motion, 16));
 }
 BENCHMARK(BM_MaskWarp)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
+
+// The dense free-space check (free_space.h): keeping a view (every 5th
+// tracked frame), and checking a frame against the 3 kept views.
+void BM_FreeSpaceOffer(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  FreeSpaceCheck check(f.camera, FreeSpaceOptions{.view_every_frames = 1});
+  for (auto _ : state) check.Offer(f.views[0].first, f.views[0].second);
+}
+BENCHMARK(BM_FreeSpaceOffer)->Unit(benchmark::kMillisecond);
+
+void BM_FreeSpaceViolations(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  FreeSpaceCheck check(f.camera, FreeSpaceOptions{.view_every_frames = 1});
+  for (const auto& [depth, pose] : f.views) check.Offer(depth, pose);
+  cv::Mat moved;
+  for (auto _ : state) {
+    moved = check.Violations(f.depth, f.cam_from_world);
+    benchmark::DoNotOptimize(moved.data);
+  }
+  state.counters["moved_in_share"] = cv::countNonZero(moved) / static_cast<double>(moved.total());
+}
+BENCHMARK(BM_FreeSpaceViolations)->Unit(benchmark::kMillisecond);
+
+// Detect with the check's violations as extra seeds (ant colony search).
+void BM_DetectWithFreeSpace(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  FreeSpaceCheck check(f.camera, FreeSpaceOptions{.view_every_frames = 1});
+  for (const auto& [depth, pose] : f.views) check.Offer(depth, pose);
+  const cv::Mat moved = check.Violations(f.depth, f.cam_from_world);
+  GeometryDetector detector(GeometryOptions{});
+  GeometryResult result;
+  for (auto _ : state) {
+    result = detector.Detect(f.depth, f.camera, f.cam_from_world, f.references, moved);
+    benchmark::DoNotOptimize(result.dynamic_mask.data);
+  }
+}
+BENCHMARK(BM_DetectWithFreeSpace)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -106,45 +106,59 @@ cv::Mat FreeSpaceCheck::Violations(const cv::Mat& depth, const SE3d& cam_from_wo
   s = FreeSpaceStats{};
   s.views = views();
   if (views_.empty()) return {};
+  // The current cells' points, once for all views.
   const cv::Mat centre = CentreDepths(depth);
+  std::vector<Eigen::Vector3f> points;
+  std::vector<int> cell_of;
+  points.reserve(static_cast<std::size_t>(cells_.area()));
+  cell_of.reserve(static_cast<std::size_t>(cells_.area()));
+  for (int i = 0; i < cells_.area(); ++i) {
+    const float z = centre.ptr<float>()[i];
+    if (z <= 0) continue;
+    const Eigen::Vector2f& ray = rays_[static_cast<std::size_t>(i)];
+    points.emplace_back(ray.x() * z, ray.y() * z, z);
+    cell_of.push_back(i);
+  }
   const int cell = options_.cell_px;
+  const bool distorted = camera_.HasDistortion();
+  const float fx = static_cast<float>(camera_.fx), fy = static_cast<float>(camera_.fy);
+  const float cx = static_cast<float>(camera_.cx), cy = static_cast<float>(camera_.cy);
+  const float min_depth = static_cast<float>(options_.min_depth_m);
+  const float a = static_cast<float>(options_.depth_threshold_m), b = static_cast<float>(options_.depth_threshold_per_m2);
   cv::Mat violated(cells_, CV_8UC1, cv::Scalar(0));
-  cv::Mat in_view(cells_, CV_8UC1);
+  std::vector<int> through_cells;
   const SE3d world_from_cam = cam_from_world.Inverse();
   for (const View& view : views_) {
     const SE3d view_from_cam = view.cam_from_world * world_from_cam;
-    const Eigen::Matrix3d rotation = view_from_cam.rotationMatrix();
-    const Eigen::Vector3d translation = view_from_cam.translation();
-    in_view.setTo(0);
-    int compared = 0, through = 0;
-    for (int cy = 0; cy < cells_.height; ++cy) {
-      const float* z_row = centre.ptr<float>(cy);
-      for (int cx = 0; cx < cells_.width; ++cx) {
-        const float z = z_row[cx];
-        if (z <= 0) continue;
-        const Eigen::Vector2f& ray = rays_[static_cast<std::size_t>(cy * cells_.width + cx)];
-        const Eigen::Vector3d p = rotation * Eigen::Vector3d(ray.x() * z, ray.y() * z, z) + translation;
-        if (p.z() < options_.min_depth_m) continue;
+    const Eigen::Matrix3f rotation = view_from_cam.rotationMatrix().cast<float>();
+    const Eigen::Vector3f translation = view_from_cam.translation().cast<float>();
+    through_cells.clear();
+    int compared = 0;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const Eigen::Vector3f p = rotation * points[k] + translation;
+      if (p.z() < min_depth) continue;
+      float u, v;
+      if (distorted) {
         const Eigen::Vector2d xd = camera_.Distort(Eigen::Vector2d(p.x() / p.z(), p.y() / p.z()));
-        const double u = camera_.fx * xd.x() + camera_.cx, v = camera_.fy * xd.y() + camera_.cy;
-        if (!(u >= 0 && u < camera_.width && v >= 0 && v < camera_.height)) continue;
-        const float seen = view.nearest.at<float>(static_cast<int>(v) / cell, static_cast<int>(u) / cell);
-        if (seen <= 0) continue;
-        ++compared;
-        const double threshold = options_.depth_threshold_m + options_.depth_threshold_per_m2 * p.z() * p.z();
-        if (seen - p.z() > threshold) {
-          ++through;
-          in_view.at<std::uint8_t>(cy, cx) = 255;
-        }
+        u = static_cast<float>(camera_.fx * xd.x() + camera_.cx);
+        v = static_cast<float>(camera_.fy * xd.y() + camera_.cy);
+      } else {
+        u = fx * p.x() / p.z() + cx;
+        v = fy * p.y() / p.z() + cy;
       }
+      if (!(u >= 0 && u < static_cast<float>(camera_.width) && v >= 0 && v < static_cast<float>(camera_.height))) continue;
+      const float seen = view.nearest.ptr<float>(static_cast<int>(v) / cell)[static_cast<int>(u) / cell];
+      if (seen <= 0) continue;
+      ++compared;
+      if (seen - p.z() > a + b * p.z() * p.z()) through_cells.push_back(cell_of[k]);
     }
     if (compared == 0) continue;
-    if (through > options_.max_violated_share * compared) {
+    if (static_cast<double>(through_cells.size()) > options_.max_violated_share * compared) {
       ++s.views_ignored;
       continue;
     }
     s.cells_compared += compared;
-    violated |= in_view;
+    for (const int i : through_cells) violated.ptr<std::uint8_t>()[i] = 255;
   }
   // Small blobs are depth noise or a pose a little off at an edge.
   cv::Mat labels, blob_stats, centroids;
@@ -153,13 +167,11 @@ cv::Mat FreeSpaceCheck::Violations(const cv::Mat& depth, const SE3d& cam_from_wo
   for (int i = 1; i < n; ++i) {
     keep[static_cast<std::size_t>(i)] = blob_stats.at<int>(i, cv::CC_STAT_AREA) >= options_.min_region_cells;
   }
-  for (int cy = 0; cy < cells_.height; ++cy) {
-    const int* l = labels.ptr<int>(cy);
-    auto* m = violated.ptr<std::uint8_t>(cy);
-    for (int cx = 0; cx < cells_.width; ++cx) {
-      m[cx] = keep[static_cast<std::size_t>(l[cx])] ? 255 : 0;
-      s.cells_violated += m[cx] != 0;
-    }
+  const int* label = labels.ptr<int>();
+  auto* mask = violated.ptr<std::uint8_t>();
+  for (int i = 0; i < cells_.area(); ++i) {
+    mask[i] = keep[static_cast<std::size_t>(label[i])] ? 255 : 0;
+    s.cells_violated += mask[i] != 0;
   }
   cv::Mat full;
   cv::resize(violated, full, cv::Size(cells_.width * cell, cells_.height * cell), 0, 0, cv::INTER_NEAREST);
