@@ -113,6 +113,26 @@ TEST(GeometryDetector, NoReferencesNoDetections) {
   EXPECT_EQ(cv::countNonZero(r.dynamic_mask), 0);
 }
 
+TEST(GeometryDetector, WhatMovedInGrowsOverTheMoverAndIsRemoved) {
+  // The dense check found only the person's leading strip (the rest stands
+  // where they stood before): with no reference point on or behind them,
+  // the strip seeds the fill, which covers the person and stops at the wall.
+  const Scene s;
+  GeometryDetector detector(GeometryOptions{});
+  cv::Mat moved_in = cv::Mat::zeros(s.depth.size(), CV_8UC1);
+  const cv::Rect strip(s.person.x, s.person.y, 20, s.person.height);
+  moved_in(strip).setTo(255);
+  const GeometryResult r = detector.Detect(s.depth, s.camera, s.current, {}, moved_in);
+  EXPECT_EQ(r.points_projected, 0);
+  EXPECT_GT(cv::countNonZero(r.dynamic_mask(s.person)), 0.95 * s.person.area());
+  cv::Mat outside = r.dynamic_mask.clone();
+  outside(s.person).setTo(0);
+  EXPECT_EQ(cv::countNonZero(outside), 0);
+  // Without it, nothing.
+  EXPECT_EQ(cv::countNonZero(detector.Detect(s.depth, s.camera, s.current, {}).dynamic_mask), 0);
+  EXPECT_THROW(detector.Detect(s.depth, s.camera, s.current, {}, cv::Mat(10, 10, CV_8UC1)), Error);
+}
+
 TEST(GeometryDetector, RejectsBadDepthAndOptions) {
   const Scene s;
   GeometryDetector detector(GeometryOptions{});
