@@ -19,11 +19,14 @@ SE3d CamFromWorld(const Eigen::Vector3d& centre) {
 
 // A wall at z = 3 m, and optionally a 0.4 m square box face at z = 1.5 m
 // centred on (box_x, 0): the depth a camera at `centre` sees.
+// Pixels are on the camera's distorted grid (PixelRays undistorts them).
 cv::Mat Render(const CameraIntrinsics& camera, const Eigen::Vector3d& centre, bool box, double box_x = 0.0) {
   cv::Mat depth(camera.height, camera.width, CV_32FC1);
+  const std::vector<Eigen::Vector2f> rays = PixelRays(camera);
   for (int v = 0; v < camera.height; ++v) {
     for (int u = 0; u < camera.width; ++u) {
-      const double xn = (u - camera.cx) / camera.fx, yn = (v - camera.cy) / camera.fy;
+      const Eigen::Vector2f& ray = rays[static_cast<std::size_t>(v * camera.width + u)];
+      const double xn = ray.x(), yn = ray.y();
       double z = 3.0 - centre.z();
       if (box) {
         const double zb = 1.5 - centre.z();
@@ -53,6 +56,29 @@ TEST(FreeSpaceCheck, AStaticSceneSeenFromElsewhereViolatesNothing) {
   EXPECT_EQ(stats.views, 1);
   EXPECT_EQ(stats.views_ignored, 0);
   EXPECT_GT(stats.cells_compared, 10000);
+}
+
+TEST(FreeSpaceCheck, ADistortedCameraProjectsThroughItsDistortion) {
+  // A strong lens (k1 = 0.8: points 0.4 focal lengths off the centre
+  // move 27 px outwards): a box near the image's edge, seen from
+  // elsewhere, stays quiet only when the check projects through the lens (as
+  // a pinhole its inner outline lands on the wall beside it: "seen
+  // through", ~400 cells). A box that moved in is found as with a pinhole
+  // camera.
+  CameraIntrinsics camera = Camera();
+  camera.k1 = 0.8;
+  constexpr double kNearTheEdge = 0.8;  // [m] at 1.5 m: its inner edge 0.4 focal lengths off the centre
+  // No neighbourhood: it would absorb part of the lens's shift.
+  FreeSpaceCheck check(camera, FreeSpaceOptions{.neighbourhood_cells = 0});
+  const Eigen::Vector3d before(0, 0, 0), now(0.06, 0.02, 0.04);
+  check.Offer(Render(camera, before, true, kNearTheEdge), CamFromWorld(before));
+  EXPECT_EQ(cv::countNonZero(check.Violations(Render(camera, now, true, kNearTheEdge), CamFromWorld(now))), 0);
+  FreeSpaceCheck empty_room(camera);
+  empty_room.Offer(Render(camera, before, false), CamFromWorld(before));
+  const cv::Mat moved = empty_room.Violations(Render(camera, now, true), CamFromWorld(now));
+  const cv::Mat box = BoxPixels(camera, now);
+  EXPECT_GT(cv::countNonZero(moved & box), 0.9 * cv::countNonZero(box));
+  EXPECT_LT(cv::countNonZero(moved & ~box), 0.1 * cv::countNonZero(box));
 }
 
 TEST(FreeSpaceCheck, WhatMovedInFrontOfAPlainWallIsFound) {
