@@ -4,6 +4,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "dlslam/dynamic/cell_grid.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam::dynamic {
@@ -27,17 +28,8 @@ void FreeSpaceOptions::Check() const {
 FreeSpaceCheck::FreeSpaceCheck(const CameraIntrinsics& camera, const FreeSpaceOptions& options)
     : camera_(camera), options_(options) {
   options_.Check();
-  const int cell = options_.cell_px;
-  cells_ = cv::Size((camera.width + cell - 1) / cell, (camera.height + cell - 1) / cell);
-  const std::vector<Eigen::Vector2f> pixel_rays = PixelRays(camera);
-  rays_.reserve(static_cast<std::size_t>(cells_.area()));
-  for (int cy = 0; cy < cells_.height; ++cy) {
-    for (int cx = 0; cx < cells_.width; ++cx) {
-      const int u = std::min(camera.width - 1, cx * cell + cell / 2);
-      const int v = std::min(camera.height - 1, cy * cell + cell / 2);
-      rays_.push_back(pixel_rays[static_cast<std::size_t>(v * camera.width + u)]);
-    }
-  }
+  cells_ = CellGridSize(camera.width, camera.height, options_.cell_px);
+  rays_ = CellCentreRays(camera, options_.cell_px);
 }
 
 void FreeSpaceCheck::CheckDepth(const cv::Mat& depth) const {
@@ -90,9 +82,9 @@ cv::Mat FreeSpaceCheck::CentreDepths(const cv::Mat& depth) const {
   cv::Mat centre(cells_, CV_32FC1, cv::Scalar(0));
   const int cell = options_.cell_px;
   for (int cy = 0; cy < cells_.height; ++cy) {
-    const int v = std::min(camera_.height - 1, cy * cell + cell / 2);
     for (int cx = 0; cx < cells_.width; ++cx) {
-      const float d = depth.at<float>(v, std::min(camera_.width - 1, cx * cell + cell / 2));
+      const cv::Point p = CellCentre(cx, cy, cell, camera_.width, camera_.height);
+      const float d = depth.at<float>(p.y, p.x);
       if (std::isfinite(d) && d >= options_.min_depth_m && d <= options_.max_depth_m) centre.at<float>(cy, cx) = d;
     }
   }

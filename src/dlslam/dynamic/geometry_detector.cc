@@ -85,10 +85,10 @@ GeometryResult GeometryDetector::Detect(const cv::Mat& depth, const CameraIntrin
                  "GeometryDetector: moved_in must be CV_8UC1 {}x{}, got type {} {}x{}", depth.cols, depth.rows,
                  moved_in.type(), moved_in.cols, moved_in.rows);
     // One seed per cell of the dense check is plenty: the fill joins them.
-    constexpr int kSeedStep = 4;  // [px]
-    for (int v = kSeedStep / 2; v < moved_in.rows; v += kSeedStep) {
+    const int step = options_.free_space.cell_px;
+    for (int v = step / 2; v < moved_in.rows; v += step) {
       const auto* row = moved_in.ptr<std::uint8_t>(v);
-      for (int u = kSeedStep / 2; u < moved_in.cols; u += kSeedStep) {
+      for (int u = step / 2; u < moved_in.cols; u += step) {
         if (row[u] != 0) seeds.emplace_back(static_cast<float>(u), static_cast<float>(v));
       }
     }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "dlslam/dynamic/cell_grid.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam::dynamic {
@@ -15,11 +16,6 @@ void MaskWarpOptions::Check() const {
 
 namespace {
 
-// The pixel at the centre of cell (cx, cy), inside the image.
-cv::Point CellCentre(int cx, int cy, int cell, int width, int height) {
-  return {std::min(width - 1, cx * cell + cell / 2), std::min(height - 1, cy * cell + cell / 2)};
-}
-
 // Radius r [px] in whole cells, rounded up: the carried mask never shrinks.
 int InCells(int r, int cell) { return (r + cell - 1) / cell; }
 
@@ -28,16 +24,8 @@ int InCells(int r, int cell) { return (r + cell - 1) / cell; }
 MaskWarper::MaskWarper(const CameraIntrinsics& camera, const MaskWarpOptions& options)
     : camera_(camera), options_(options) {
   options_.Check();
-  const int cell = options_.cell_px;
-  cells_ = cv::Size((camera.width + cell - 1) / cell, (camera.height + cell - 1) / cell);
-  const std::vector<Eigen::Vector2f> pixel_rays = PixelRays(camera);
-  rays_.reserve(static_cast<std::size_t>(cells_.area()));
-  for (int cy = 0; cy < cells_.height; ++cy) {
-    for (int cx = 0; cx < cells_.width; ++cx) {
-      const cv::Point p = CellCentre(cx, cy, cell, camera.width, camera.height);
-      rays_.push_back(pixel_rays[static_cast<std::size_t>(p.y * camera.width + p.x)]);
-    }
-  }
+  cells_ = CellGridSize(camera.width, camera.height, options_.cell_px);
+  rays_ = CellCentreRays(camera, options_.cell_px);
 }
 
 cv::Mat MaskWarper::Warp(const cv::Mat& mask_s, const cv::Mat& depth_s, const SE3d& t_from_s, int grow_px) const {

@@ -157,7 +157,7 @@ dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, co
   DLSLAM_CHECK(depth.type() == CV_32FC1 && depth.cols == camera_.width && depth.rows == camera_.height,
                "depth must be float metres {}x{}", camera_.width, camera_.height);
   const std::optional<SE3d> cam_from_world = tracker_->EstimatePose(frame);
-  if (!cam_from_world) return {};
+  if (!cam_from_world) return {};  // not tracking: no pose to project with
   const std::size_t n = static_cast<std::size_t>(options_.geometry.multiview.max_reference_views);
   std::vector<dynamic::ReferenceView> views;
   for (const KeyFrameSnapshot& kf : map_->GetCovisibleKeyFrames(tracker_->reference_keyframe(), n)) {
@@ -176,7 +176,8 @@ dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, co
     // and keep the labelling that leaves the larger part of the image static.
     const std::optional<SE3d> other = tracker_->EstimatePose(frame.Subset(frame.OnMask(result.dynamic_mask)));
     if (other) {
-      dynamic::GeometryResult alternative = detector_.Detect(depth, camera_, *other, views, MovedIn(depth, *other, /*count=*/false));
+      dynamic::GeometryResult alternative =
+          detector_.Detect(depth, camera_, *other, views, MovedIn(depth, *other, /*count=*/false));
       ++stats_.inverted_checks_tried;
       if (share_of_image(alternative.dynamic_mask) < share) {
         result = std::move(alternative);
@@ -198,10 +199,9 @@ dynamic::GeometryResult DynamicStage::DetectGeometrically(const Frame& frame, co
 }
 
 cv::Mat DynamicStage::MovedIn(const cv::Mat& depth, const SE3d& cam_from_world, bool count) {
-  if (!options_.geometry.free_space.enabled || free_space_.views() == 0) return {};
-  if (map_->Generation() != free_space_generation_) {
-    // The views' poses are from before a map correction.
-    free_space_.Reset();
+  // Views from before a map correction are forgotten at the next OfferView.
+  if (!options_.geometry.free_space.enabled || free_space_.views() == 0 ||
+      map_->Generation() != free_space_generation_) {
     return {};
   }
   Stopwatch watch;
@@ -211,7 +211,9 @@ cv::Mat DynamicStage::MovedIn(const cv::Mat& depth, const SE3d& cam_from_world, 
   if (!count) return violations;
   ++stats_.free_space_frames;
   stats_.free_space_views_ignored += stats.views_ignored;
-  if (!violations.empty()) stats_.free_space_share_sum += cv::countNonZero(violations) / static_cast<double>(violations.total());
+  if (!violations.empty()) {
+    stats_.free_space_share_sum += cv::countNonZero(violations) / static_cast<double>(violations.total());
+  }
   return violations;
 }
 
