@@ -134,6 +134,11 @@ TEST_F(ConfigFileTest, MistakesAreErrorsWithTheirLine) {
               HasSubstr("c.yaml:2: semantic.carried_segment_every: out of range"));
   EXPECT_THAT(Error("semantic:\n  segmenter:\n    threads: -1\n"),
               HasSubstr("c.yaml:3: semantic.segmenter.threads: out of range"));
+  // The dense free-space check.
+  EXPECT_THAT(Error("dynamic:\n  geometry:\n    free_space:\n      cell_px: 0\n"),
+              HasSubstr("c.yaml:4: dynamic.geometry.free_space.cell_px: out of range"));
+  EXPECT_THAT(Error("dynamic:\n  geometry:\n    free_space:\n      max_violated_share: 1.5\n"),
+              HasSubstr("c.yaml:4: dynamic.geometry.free_space.max_violated_share: out of range"));
 }
 
 TEST_F(ConfigFileTest, TheReportJsonIsNested) {
