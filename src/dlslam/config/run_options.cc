@@ -242,6 +242,7 @@ void Visit(DynamicOptions& o, V& v) {
   v.Value("max_dynamic_evidence", o.fusion.max_dynamic_evidence, {"points", "geometry_confirms: at most this many dynamic"});
   v.Value("drop_moving_movables", o.fusion.drop_moving_movables, {"", "drop a movable-class segment whole when geometry sees it move"});
   v.Value("movable_dynamic_evidence", o.fusion.movable_dynamic_evidence, {"points", "dynamic points that make it move"});
+  v.Value("movable_dynamic_share", o.fusion.movable_dynamic_share, {"", "... and their least share of its tested points"});
   v.Value("dilation_px", o.fusion.dilation_px, {"px", "of the removal mask"});
   v.End();
   v.Begin("completion", "the network's person mask completed with the depth");

@@ -32,6 +32,8 @@ void FusionOptions::Check() const {
   DLSLAM_CHECK_GE(min_static_evidence, 0, "FusionOptions::min_static_evidence");
   DLSLAM_CHECK_GE(max_dynamic_evidence, 0, "FusionOptions::max_dynamic_evidence");
   DLSLAM_CHECK_GE(movable_dynamic_evidence, 1, "FusionOptions::movable_dynamic_evidence");
+  DLSLAM_CHECK(movable_dynamic_share >= 0.0 && movable_dynamic_share <= 1.0,
+               "FusionOptions::movable_dynamic_share {} outside [0, 1]", movable_dynamic_share);
   DLSLAM_CHECK(dilation_px >= 0 && dilation_px <= 100,
                "FusionOptions::dilation_px {} outside [0, 100]", dilation_px);
 }
@@ -45,7 +47,8 @@ struct Segments {
   std::vector<int> static_points, dynamic_points;
 };
 
-Segments CountEvidence(const cv::Mat& mask, const GeometryResult& geometry) {
+// Points on a non-zero pixel of `ignore` (optional) are not counted.
+Segments CountEvidence(const cv::Mat& mask, const GeometryResult& geometry, const cv::Mat& ignore = {}) {
   Segments s;
   const int count = cv::connectedComponents(mask != 0, s.labels, 8, CV_32S);
   s.static_points.assign(static_cast<std::size_t>(count), 0);
@@ -54,6 +57,7 @@ Segments CountEvidence(const cv::Mat& mask, const GeometryResult& geometry) {
     const int u = static_cast<int>(std::lround(geometry.points[i].pixel.x()));
     const int v = static_cast<int>(std::lround(geometry.points[i].pixel.y()));
     if (u < 0 || v < 0 || u >= s.labels.cols || v >= s.labels.rows) continue;
+    if (!ignore.empty() && ignore.at<std::uint8_t>(v, u) != 0) continue;
     const auto segment = static_cast<std::size_t>(s.labels.at<int>(v, u));
     if (segment == 0) continue;  // outside every segment
     const PointLabel label = geometry.labels[i];
@@ -102,16 +106,18 @@ int DynamicPointsOn(const cv::Mat& mask, const GeometryResult& geometry) {
 }
 
 // Movable segments the geometry shows moving (empty when none); their count
-// in `dropped`.
-cv::Mat MovingSegments(const cv::Mat& movable, const GeometryResult& geometry, const FusionOptions& options,
-                       int* dropped) {
+// in `dropped`. Evidence on `people` (the a-priori dynamic mask) is theirs.
+cv::Mat MovingSegments(const cv::Mat& movable, const cv::Mat& people, const GeometryResult& geometry,
+                       const FusionOptions& options, int* dropped) {
   // No segment can hold more evidence than the whole mask: then the
   // segments need not be found (most frames; ~0.6 ms at 640x480).
   if (DynamicPointsOn(movable, geometry) < options.movable_dynamic_evidence) return {};
-  const Segments s = CountEvidence(movable, geometry);
+  const Segments s = CountEvidence(movable, geometry, people);
   std::vector<std::uint8_t> moving(s.dynamic_points.size(), 0);
   for (std::size_t i = 1; i < moving.size(); ++i) {
-    moving[i] = s.dynamic_points[i] >= options.movable_dynamic_evidence;
+    const int dynamic = s.dynamic_points[i];
+    moving[i] = dynamic >= options.movable_dynamic_evidence &&
+                dynamic >= options.movable_dynamic_share * (dynamic + s.static_points[i]);
     *dropped += moving[i];
   }
   return Paint(s.labels, moving);
@@ -149,7 +155,7 @@ cv::Mat FuseDynamicMasks(const SemanticMasks& semantic, const GeometryResult& ge
                               options.policy == FusionPolicy::kGeometryConfirms);
   if (uses_movables) {
     int dropped = 0;
-    const cv::Mat moving_movables = MovingSegments(semantic.movable, geometry, options, &dropped);
+    const cv::Mat moving_movables = MovingSegments(semantic.movable, semantic.dynamic, geometry, options, &dropped);
     if (!moving_movables.empty()) moving |= moving_movables;
     if (movable_segments_dropped != nullptr) *movable_segments_dropped = dropped;
   }

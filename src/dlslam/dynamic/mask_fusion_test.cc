@@ -157,6 +157,55 @@ TEST(FuseDynamicMasks, MovableSegmentsGoWholeWhenGeometrySeesThemMove) {
             d.area());
 }
 
+// A still chair beside a walker: a few moving labels at its edge (parallax
+// at a see-through back, the walker's outline) among many static ones, and
+// moving points where the walker's mask overlaps it. It stays; a pushed one,
+// whose points mostly disagree, goes.
+TEST(FuseDynamicMasks, AStillMovableWithAFewMovingLabelsStays) {
+  Scene s;
+  const cv::Rect chair{40, 55, 50, 40};
+  cv::Mat movable = cv::Mat::zeros(s.semantic.size(), CV_8UC1);
+  movable(chair).setTo(255);
+  for (int i = 0; i < 8; ++i) s.Add(chair.x + 5 + 5 * i, chair.y + 20, PointLabel::kStatic);
+  for (int i = 0; i < 3; ++i) s.Add(chair.x + 2, chair.y + 12 + 10 * i, PointLabel::kDynamic);
+  // The walker's mask reaches over the chair's top edge, with 6 moving points.
+  const cv::Rect walker_edge{chair.x, chair.y, chair.width, 6};
+  s.semantic(walker_edge).setTo(255);
+  for (int i = 0; i < 6; ++i) s.Add(chair.x + 10 + 5 * i, chair.y + 2, PointLabel::kDynamic);
+
+  int dropped = -1;
+  cv::Mat fused = FuseDynamicMasks({s.semantic, movable}, s.geometry, Policy(FusionPolicy::kUnion), &dropped);
+  EXPECT_EQ(dropped, 0);  // 3 of 11 counted points move: 0.27 < 0.5
+  EXPECT_EQ(cv::countNonZero(fused(chair)), walker_edge.area());
+
+  FusionOptions options = Policy(FusionPolicy::kUnion);
+  options.movable_dynamic_share = 0.25;
+  fused = FuseDynamicMasks({s.semantic, movable}, s.geometry, options, &dropped);
+  EXPECT_EQ(dropped, 1);
+  EXPECT_EQ(cv::countNonZero(fused(chair)), chair.area());
+
+  // Were the walker's 6 points counted, 9 of 17 would move (0.53): the chair
+  // would go at the default share. They are the walker's evidence.
+  options.movable_dynamic_share = 0.5;
+  FuseDynamicMasks({s.semantic, movable}, s.geometry, options, &dropped);
+  EXPECT_EQ(dropped, 0);
+  // Pushed: its static points now disagree too.
+  for (std::size_t i = 0; i < s.geometry.labels.size(); ++i) {
+    if (s.geometry.labels[i] == PointLabel::kStatic && chair.contains(cv::Point(s.geometry.points[i].pixel.x(),
+                                                                                   s.geometry.points[i].pixel.y()))) {
+      s.geometry.labels[i] = PointLabel::kVanished;
+    }
+  }
+  FuseDynamicMasks({s.semantic, movable}, s.geometry, options, &dropped);
+  EXPECT_EQ(dropped, 1);
+
+  FusionOptions bad;
+  bad.movable_dynamic_share = 1.5;
+  EXPECT_THROW(bad.Check(), Error);
+  bad.movable_dynamic_share = -0.1;
+  EXPECT_THROW(bad.Check(), Error);
+}
+
 TEST(FusionPolicy, NamesRoundTrip) {
   for (const FusionPolicy p : {FusionPolicy::kUnion, FusionPolicy::kGeometryConfirms,
                                FusionPolicy::kSemanticOnly, FusionPolicy::kGeometryOnly}) {
