@@ -179,6 +179,8 @@ void Visit(dynamic::GeometryOptions& o, V& v) {
   v.Value("depth_threshold_per_m2", o.multiview.depth_threshold_per_m2, {"1/m", "... plus this times depth^2"});
   v.Value("depth_patch_radius_px", o.multiview.depth_patch_radius_px, {"px", "depth read as the patch's nearest"});
   v.Value("agreement_radius_px", o.multiview.agreement_radius_px, {"px", "static if any depth this near agrees"});
+  v.Value("parallax_occlusion_check", o.multiview.parallax_occlusion_check, {"", "a point hidden behind a surface the reference view saw past is occluded, not moving"});
+  v.Value("parallax_clearance_px", o.multiview.parallax_clearance_px, {"px", "... seen past by at least this much"});
   v.Value("min_depth_m", o.multiview.min_depth_m, {"m", "nearer depth is not tested"});
   v.Value("max_depth_m", o.multiview.max_depth_m, {"m", "farther depth is not tested"});
   v.End();
@@ -259,6 +261,7 @@ void Visit(DynamicOptions& o, V& v) {
   v.Value("inverted_check_min_share", o.inverted_check_min_share, {"", "of the image marked before trying"});
   v.Value("max_geometry_share_of_prior_static", o.max_geometry_share_of_prior_static,
           {"", "full: geometry taking more of what the prior left is overruled"});
+  v.Value("geometry_mode_parallax_check", o.geometry_mode_parallax_check, {"", "mode geometry uses geometry.multiview.parallax_occlusion_check too (mode full always does)"});
 }
 
 void Visit(SemanticThreadOptions& o, V& v) {

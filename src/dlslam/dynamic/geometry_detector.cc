@@ -52,7 +52,15 @@ GeometryResult GeometryDetector::Detect(const cv::Mat& depth, const CameraIntrin
   const MultiViewOptions& multiview = options_.multiview;
   SearchResult search = search_->Search(
       result.points, depth.size(), [&](std::size_t i) {
-        return ClassifyPoint(result.points[i], depth, multiview, &depth_pixels_[i]);
+        const ProjectedPoint& p = result.points[i];
+        const PointLabel label = ClassifyPoint(p, depth, multiview, &depth_pixels_[i]);
+        if (label != PointLabel::kDynamic) return label;
+        const ReferenceView& view = references[static_cast<std::size_t>(p.view)];
+        const double measured = depth.at<float>(depth_pixels_[i]);
+        return OcclusionProvesMotion(view.points[static_cast<std::size_t>(p.point)].position_world,
+                                     view.cam_from_world, cam_from_world, measured, depth, intrinsics, multiview)
+                   ? label
+                   : PointLabel::kOccluded;
       });
   result.labels = std::move(search.labels);
   result.points_projected = static_cast<int>(n);

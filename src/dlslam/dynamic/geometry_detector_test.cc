@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "dlslam/dynamic/test_scenes.h"
 #include "dlslam/util/check.h"
 
@@ -131,6 +133,57 @@ TEST(GeometryDetector, WhatMovedInGrowsOverTheMoverAndIsRemoved) {
   // Without it, nothing.
   EXPECT_EQ(cv::countNonZero(detector.Detect(s.depth, s.camera, s.current, {}).dynamic_mask), 0);
   EXPECT_THROW(detector.Detect(s.depth, s.camera, s.current, {}, cv::Mat(10, 10, CV_8UC1)), Error);
+}
+
+// A still box before a wall, seen from the reference camera and from 0.3 m to
+// its left: the wall points the reference saw past the box's edge are hidden
+// by parallax, not by motion. With the parallax check nothing is flagged;
+// without it a region grows over the box.
+TEST(GeometryDetector, ParallaxBehindAStillBoxFlagsNothing) {
+  const CameraIntrinsics camera = TestCamera();
+  const SE3d current = LookAt({-0.3, 0.0, 0.0}, {-0.3, 0.0, 3.0});
+  const Eigen::Vector3d centre = current.Inverse().translation();
+  auto render = [&](const Eigen::Vector3d& from) {
+    cv::Mat depth(camera.height, camera.width, CV_32FC1);
+    for (int v = 0; v < depth.rows; ++v) {
+      for (int u = 0; u < depth.cols; ++u) {
+        const Eigen::Vector3d at_box = from + camera.Unproject({u, v}, 1.5);
+        const bool box = at_box.x() >= 0.0 && at_box.x() <= 0.3 && std::abs(at_box.y()) <= 0.2;
+        depth.at<float>(v, u) = box ? 1.5f : 3.0f;
+      }
+    }
+    return depth;
+  };
+  // The reference keyframe's keypoints: every 10th pixel, at its depth.
+  const cv::Mat reference_depth = render(Eigen::Vector3d::Zero());
+  ReferenceView view{SE3d::Identity(), {}};
+  for (int v = 5; v < camera.height; v += 10) {
+    for (int u = 5; u < camera.width; u += 10) {
+      view.points.push_back({camera.Unproject({u, v}, reference_depth.at<float>(v, u)), view.points.size()});
+    }
+  }
+  const cv::Mat depth = render(centre);
+  GeometryOptions options;
+  options.search = SearchKind::kExhaustive;
+  options.multiview.parallax_occlusion_check = false;
+  GeometryDetector without(options);
+  const GeometryResult old = without.Detect(depth, camera, current, {view});
+  EXPECT_GT(old.points_dynamic, 40);
+  EXPECT_GT(cv::countNonZero(old.dynamic_mask), 0);
+  // With the check, clearance 0: every one of them is parallax.
+  options.multiview.parallax_occlusion_check = true;
+  options.multiview.parallax_clearance_px = 0;
+  GeometryDetector exact(options);
+  const GeometryResult r = exact.Detect(depth, camera, current, {view});
+  EXPECT_EQ(r.points_dynamic, 0);
+  EXPECT_EQ(std::count(r.labels.begin(), r.labels.end(), PointLabel::kOccluded), old.points_dynamic);
+  EXPECT_EQ(cv::countNonZero(r.dynamic_mask), 0);
+  // With the default clearance only the points whose reference ray grazed
+  // the box's edge (one column of the 10 px grid) stay moving.
+  options.multiview.parallax_clearance_px = MultiViewOptions{}.parallax_clearance_px;
+  GeometryDetector cleared(options);
+  const GeometryResult c = cleared.Detect(depth, camera, current, {view});
+  EXPECT_LT(c.points_dynamic, old.points_dynamic / 3);
 }
 
 TEST(GeometryDetector, RejectsBadDepthAndOptions) {

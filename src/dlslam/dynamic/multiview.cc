@@ -23,6 +23,8 @@ void MultiViewOptions::Check() const {
   DLSLAM_CHECK(depth_patch_radius_px >= 0 && depth_patch_radius_px <= 20,
                "MultiViewOptions::depth_patch_radius_px {} outside [0, 20]",
                depth_patch_radius_px);
+  DLSLAM_CHECK(parallax_clearance_px >= 0 && parallax_clearance_px <= 20,
+               "MultiViewOptions::parallax_clearance_px {} outside [0, 20]", parallax_clearance_px);
   DLSLAM_CHECK(min_depth_m > 0 && min_depth_m < max_depth_m,
                "MultiViewOptions: need 0 < min_depth_m {} < max_depth_m {}", min_depth_m,
                max_depth_m);
@@ -36,6 +38,7 @@ const char* ToString(PointLabel label) {
     case PointLabel::kStatic: return "static";
     case PointLabel::kDynamic: return "dynamic";
     case PointLabel::kVanished: return "vanished";
+    case PointLabel::kOccluded: return "occluded";
   }
   return "?";
 }
@@ -167,6 +170,42 @@ PointLabel ClassifyPoint(const ProjectedPoint& point, const cv::Mat& depth,
   if (std::abs(difference) <= threshold) return PointLabel::kStatic;
   if (AgreeingDepthNearby(depth, point.pixel, z, threshold, options, depth_pixel)) return PointLabel::kStatic;
   return difference > 0 ? PointLabel::kDynamic : PointLabel::kVanished;
+}
+
+bool OcclusionProvesMotion(const Eigen::Vector3d& point_world, const SE3d& reference_cam_from_world,
+                           const SE3d& cam_from_world, double measured_depth, const cv::Mat& depth,
+                           const CameraIntrinsics& intrinsics, const MultiViewOptions& options) {
+  if (!options.parallax_occlusion_check || !(measured_depth > 0)) return true;
+  // The reference camera's ray to the point, in the current camera frame:
+  // origin + t * direction, t in (0, 1).
+  const Eigen::Vector3d origin = cam_from_world * reference_cam_from_world.Inverse().translation();
+  const Eigen::Vector3d direction = cam_from_world * point_world - origin;
+  if (std::abs(direction.z()) < 1e-9) return true;
+  const double threshold = options.DepthThreshold(measured_depth);
+  const bool distort = intrinsics.HasDistortion();
+  int free = 0;
+  for (const double z : {measured_depth - threshold, measured_depth, measured_depth + threshold}) {
+    const double t = (z - origin.z()) / direction.z();
+    if (!(t > 0.0 && t < 1.0) || !(z > 1e-6)) continue;  // the ray is not at this depth between them
+    const Eigen::Vector3d sample = origin + t * direction;
+    const Eigen::Vector2d normalised(sample.x() / sample.z(), sample.y() / sample.z());
+    const Eigen::Vector2d n = distort ? intrinsics.Distort(normalised) : normalised;
+    const int u = static_cast<int>(std::lround(intrinsics.fx * n.x() + intrinsics.cx));
+    const int v = static_cast<int>(std::lround(intrinsics.fy * n.y() + intrinsics.cy));
+    const int r = options.parallax_clearance_px;
+    bool read = false;
+    for (int y = std::max(0, v - r); y <= std::min(depth.rows - 1, v + r); ++y) {
+      const float* row = depth.ptr<float>(y);
+      for (int x = std::max(0, u - r); x <= std::min(depth.cols - 1, u + r); ++x) {
+        const float d = row[x];
+        if (!(d >= options.min_depth_m && d <= options.max_depth_m)) continue;  // a hole: unread
+        if (d <= z + threshold) return true;  // a surface on the ray, or something nearer hiding it
+        read = true;
+      }
+    }
+    free += read;
+  }
+  return free == 0;
 }
 
 }  // namespace dlslam::dynamic

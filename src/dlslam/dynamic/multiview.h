@@ -52,6 +52,19 @@ struct MultiViewOptions {
   // and on the real Bonn frames such points seeded regions over whole
   // static chairs, desks and shelves.
   int agreement_radius_px = 3;
+  // A point hidden behind a nearer surface proves motion only if that
+  // surface, were it static, would also have stood on the reference view's
+  // ray to the point (which that view saw). Checked where the ray crosses the
+  // surface's depth: free space there now means the reference view saw past
+  // the surface, and the occlusion is the camera's parallax (kOccluded).
+  // Why: on the real Bonn crowd, wall points seen beside a chair's back from
+  // one keyframe fell behind it from the current view and grew regions over
+  // whole static chairs and floor. False = off.
+  bool parallax_occlusion_check = true;
+  // ... and only where the ray passes the surface by at least this many
+  // pixels [px, 0..20]: near a silhouette pose error and the nearest-depth
+  // search blur the test, and thin movers (an arm, a head) must keep it.
+  int parallax_clearance_px = 4;
   // Depths outside [min_depth_m, max_depth_m] (projected or measured) are
   // treated as invalid [m]; beyond ~5 m the Kinect's depth is too noisy.
   double min_depth_m = 0.1;
@@ -85,6 +98,7 @@ enum class PointLabel : std::uint8_t {
   kStatic,      // depths agree
   kDynamic,     // something now stands in front of the point
   kVanished,    // the point has left (current depth clearly larger)
+  kOccluded,    // behind a nearer surface the reference view saw past (parallax)
 };
 const char* ToString(PointLabel label);
 
@@ -116,6 +130,19 @@ std::vector<ProjectedPoint> ProjectReferencePoints(const std::vector<ReferenceVi
 // kVanished): a dynamic point's occluder, the seed of region growing.
 PointLabel ClassifyPoint(const ProjectedPoint& point, const cv::Mat& depth,
                          const MultiViewOptions& options, cv::Point* depth_pixel = nullptr);
+
+// For a kDynamic point (`point_world`, seen from `reference_cam_from_world`;
+// now behind a surface at `measured_depth` [m]): does the surface, were it
+// static, also stand on the reference camera's ray to the point? Samples
+// that ray where its current depth is measured_depth and measured_depth +-
+// the depth threshold, and reads the current depth (CV_32FC1 metres) there.
+// False (parallax explains the occlusion) only when every sample that can be
+// read shows free space beyond it, within options.parallax_clearance_px, and
+// at least one can; true when any shows a surface on the ray or something
+// nearer hiding it, or none can be read.
+bool OcclusionProvesMotion(const Eigen::Vector3d& point_world, const SE3d& reference_cam_from_world,
+                           const SE3d& cam_from_world, double measured_depth, const cv::Mat& depth,
+                           const CameraIntrinsics& intrinsics, const MultiViewOptions& options);
 
 // The valid depth [m] nearest to `pixel` (rounded) within the Chebyshev
 // radius: rings of growing radius, within a ring the smallest Euclidean

@@ -173,6 +173,52 @@ TEST(ClassifyPoint, ItsOwnSurfaceNextToADepthEdgeIsStatic) {
   EXPECT_EQ(ClassifyPoint(p, depth, on), PointLabel::kStatic);
 }
 
+// A box (x in [0, 0.3] m, |y| <= 0.2 m) at z = 1.5 m before a wall at z = 3
+// m; the reference camera at the origin, the current one 0.3 m to its left,
+// both looking along z. Depth as the current camera sees the box at `box_x`.
+cv::Mat BoxBeforeWall(const CameraIntrinsics& camera, const SE3d& cam_from_world, double box_x) {
+  cv::Mat depth(camera.height, camera.width, CV_32FC1);
+  const Eigen::Vector3d centre = cam_from_world.Inverse().translation();
+  for (int v = 0; v < depth.rows; ++v) {
+    for (int u = 0; u < depth.cols; ++u) {
+      const Eigen::Vector3d ray = camera.Unproject({u, v}, 1.0);  // z = 1, camera axes = world axes
+      const Eigen::Vector3d at_box = centre + ray * 1.5;
+      const bool box = at_box.x() >= box_x && at_box.x() <= box_x + 0.3 && std::abs(at_box.y()) <= 0.2;
+      depth.at<float>(v, u) = box ? 1.5f : 3.0f;
+    }
+  }
+  return depth;
+}
+
+TEST(OcclusionProvesMotion, ParallaxBehindAStillBoxIsNotMotion) {
+  const CameraIntrinsics camera = TestCamera();
+  const SE3d reference = SE3d::Identity();
+  const SE3d current = LookAt({-0.3, 0.0, 0.0}, {-0.3, 0.0, 3.0});
+  const cv::Mat depth = BoxBeforeWall(camera, current, 0.0);
+  const MultiViewOptions options;
+  // A wall point the reference saw just past the box's right edge (its ray
+  // crosses z = 1.5 at x = 0.325); from the left the box now hides it.
+  const Eigen::Vector3d wall_point(0.65, 0.0, 3.0);
+  ReferenceView view{reference, {{wall_point, 1}}};
+  const std::vector<ProjectedPoint> projected = ProjectReferencePoints({view}, current, camera);
+  ASSERT_EQ(projected.size(), 1u);
+  ASSERT_EQ(ClassifyPoint(projected[0], depth, options), PointLabel::kDynamic);  // the depth test alone
+  EXPECT_FALSE(OcclusionProvesMotion(wall_point, reference, current, 1.5, depth, camera, options));
+  // A point the reference could only have seen had the box not been there
+  // (its ray crosses the box's place): the box moved in.
+  const Eigen::Vector3d hidden_point(0.45, 0.0, 3.0);
+  EXPECT_TRUE(OcclusionProvesMotion(hidden_point, reference, current, 1.5, depth, camera, options));
+  // Switched off, every occlusion counts.
+  MultiViewOptions off;
+  off.parallax_occlusion_check = false;
+  EXPECT_TRUE(OcclusionProvesMotion(wall_point, reference, current, 1.5, depth, camera, off));
+  // No baseline: the ray is the current one, which meets the surface.
+  EXPECT_TRUE(OcclusionProvesMotion(Eigen::Vector3d(0.5, 0.0, 3.0), current, current, 1.5, depth, camera, options));
+  // Nothing readable along the ray (a hole): not explained, kept as motion.
+  const cv::Mat holes = cv::Mat::zeros(depth.size(), CV_32FC1);
+  EXPECT_TRUE(OcclusionProvesMotion(wall_point, reference, current, 1.5, holes, camera, options));
+}
+
 TEST(NearestValidDepth, PrefersTheNearestPixel) {
   cv::Mat depth(20, 20, CV_32FC1, cv::Scalar(0.0f));
   depth.at<float>(10 + 2, 10 + 2) = 3.0f;  // distance sqrt(8)
@@ -219,6 +265,7 @@ TEST(MultiViewOptions, CheckRejectsBadValues) {
   EXPECT_THROW(bad([](auto& o) { o.depth_patch_radius_px = -1; }).Check(), Error);
   EXPECT_THROW(bad([](auto& o) { o.agreement_radius_px = -1; }).Check(), Error);
   EXPECT_THROW(bad([](auto& o) { o.agreement_radius_px = 21; }).Check(), Error);
+  EXPECT_THROW(bad([](auto& o) { o.parallax_clearance_px = -1; }).Check(), Error);
   EXPECT_THROW(bad([](auto& o) { o.min_depth_m = 7; }).Check(), Error);
   try {
     bad([](auto& o) { o.max_view_angle_deg = 200; }).Check();

@@ -38,4 +38,10 @@ void DynamicOptions::Check() const {
                max_geometry_share_of_prior_static);
 }
 
+dynamic::GeometryOptions DynamicOptions::GeometryInMode() const {
+  dynamic::GeometryOptions g = geometry;
+  if (mode == DynamicMode::kGeometry && !geometry_mode_parallax_check) g.multiview.parallax_occlusion_check = false;
+  return g;
+}
+
 }  // namespace dlslam

@@ -47,7 +47,7 @@ DynamicStage::DynamicStage(const DynamicOptions& options, const CameraIntrinsics
       map_(map),
       tracker_(tracker),
       timings_(timings),
-      detector_(options.geometry),
+      detector_(options.GeometryInMode()),
       free_space_(camera, options.geometry.free_space) {
   options_.Check();
   DLSLAM_CHECK(map_ != nullptr && tracker_ != nullptr && timings_ != nullptr);

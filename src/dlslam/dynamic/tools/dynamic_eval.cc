@@ -67,6 +67,7 @@ cv::Mat DrawOverlay(const cv::Mat& colour, const GeometryResult& result, const c
       case PointLabel::kVanished: cv::circle(out, p, 4, {255, 0, 255}, cv::FILLED); break;
       case PointLabel::kStatic: cv::circle(out, p, 3, {0, 200, 0}, 1); break;
       case PointLabel::kUnknown:
+      case PointLabel::kOccluded:
       case PointLabel::kUnreliable: cv::circle(out, p, 3, {160, 160, 160}, 1); break;
       case PointLabel::kUntested: cv::circle(out, p, 1, {255, 128, 0}, cv::FILLED); break;
     }
