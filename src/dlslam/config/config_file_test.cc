@@ -139,6 +139,11 @@ TEST_F(ConfigFileTest, MistakesAreErrorsWithTheirLine) {
               HasSubstr("c.yaml:4: dynamic.geometry.free_space.cell_px: out of range"));
   EXPECT_THAT(Error("dynamic:\n  geometry:\n    free_space:\n      max_violated_share: 1.5\n"),
               HasSubstr("c.yaml:4: dynamic.geometry.free_space.max_violated_share: out of range"));
+  // The parallax occlusion check and the movable rule.
+  EXPECT_THAT(Error("dynamic:\n  geometry:\n    multiview:\n      parallax_clearance_px: 50\n"),
+              HasSubstr("c.yaml:4: dynamic.geometry.multiview.parallax_clearance_px: out of range"));
+  EXPECT_THAT(Error("dynamic:\n  fusion:\n    movable_dynamic_share: 2\n"),
+              HasSubstr("c.yaml:3: dynamic.fusion.movable_dynamic_share: out of range"));
 }
 
 TEST_F(ConfigFileTest, TheReportJsonIsNested) {

@@ -142,27 +142,15 @@ TEST(GeometryDetector, WhatMovedInGrowsOverTheMoverAndIsRemoved) {
 TEST(GeometryDetector, ParallaxBehindAStillBoxFlagsNothing) {
   const CameraIntrinsics camera = TestCamera();
   const SE3d current = LookAt({-0.3, 0.0, 0.0}, {-0.3, 0.0, 3.0});
-  const Eigen::Vector3d centre = current.Inverse().translation();
-  auto render = [&](const Eigen::Vector3d& from) {
-    cv::Mat depth(camera.height, camera.width, CV_32FC1);
-    for (int v = 0; v < depth.rows; ++v) {
-      for (int u = 0; u < depth.cols; ++u) {
-        const Eigen::Vector3d at_box = from + camera.Unproject({u, v}, 1.5);
-        const bool box = at_box.x() >= 0.0 && at_box.x() <= 0.3 && std::abs(at_box.y()) <= 0.2;
-        depth.at<float>(v, u) = box ? 1.5f : 3.0f;
-      }
-    }
-    return depth;
-  };
   // The reference keyframe's keypoints: every 10th pixel, at its depth.
-  const cv::Mat reference_depth = render(Eigen::Vector3d::Zero());
+  const cv::Mat reference_depth = testing::BoxBeforeWallDepth(camera, Eigen::Vector3d::Zero());
   ReferenceView view{SE3d::Identity(), {}};
   for (int v = 5; v < camera.height; v += 10) {
     for (int u = 5; u < camera.width; u += 10) {
       view.points.push_back({camera.Unproject({u, v}, reference_depth.at<float>(v, u)), view.points.size()});
     }
   }
-  const cv::Mat depth = render(centre);
+  const cv::Mat depth = testing::BoxBeforeWallDepth(camera, current.Inverse().translation());
   GeometryOptions options;
   options.search = SearchKind::kExhaustive;
   options.multiview.parallax_occlusion_check = false;

@@ -43,12 +43,22 @@ const char* ToString(PointLabel label) {
   return "?";
 }
 
+namespace {
+
+// The (distorted) image position of a point in the camera frame, z > 0.
+Eigen::Vector2d ImagePosition(const CameraIntrinsics& intrinsics, const Eigen::Vector3d& p_cam) {
+  const Eigen::Vector2d normalised(p_cam.x() / p_cam.z(), p_cam.y() / p_cam.z());
+  const Eigen::Vector2d n = intrinsics.HasDistortion() ? intrinsics.Distort(normalised) : normalised;
+  return {intrinsics.fx * n.x() + intrinsics.cx, intrinsics.fy * n.y() + intrinsics.cy};
+}
+
+}  // namespace
+
 void ProjectReferencePoints(const std::vector<ReferenceView>& references,
                             const SE3d& cam_from_world, const CameraIntrinsics& intrinsics,
                             std::vector<ProjectedPoint>& out, std::size_t max_views) {
   out.clear();
   const Eigen::Vector3d current_centre = cam_from_world.Inverse().translation();
-  const bool distort = intrinsics.HasDistortion();
   const double max_u = intrinsics.width - 0.5;
   const double max_v = intrinsics.height - 0.5;
   constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
@@ -59,10 +69,9 @@ void ProjectReferencePoints(const std::vector<ReferenceView>& references,
       const Eigen::Vector3d& x_world = view.points[p].position_world;
       const Eigen::Vector3d x_cam = cam_from_world * x_world;
       if (!(x_cam.z() > 1e-6)) continue;
-      const Eigen::Vector2d normalised(x_cam.x() / x_cam.z(), x_cam.y() / x_cam.z());
-      const Eigen::Vector2d n = distort ? intrinsics.Distort(normalised) : normalised;
-      const double u = intrinsics.fx * n.x() + intrinsics.cx;
-      const double w = intrinsics.fy * n.y() + intrinsics.cy;
+      const Eigen::Vector2d image = ImagePosition(intrinsics, x_cam);
+      const double u = image.x();
+      const double w = image.y();
       // Pixel centres are integers: the image covers [-0.5, size - 0.5).
       if (!(u >= -0.5 && u < max_u && w >= -0.5 && w < max_v)) continue;
       const Eigen::Vector3d ray_current = x_world - current_centre;
@@ -182,16 +191,13 @@ bool OcclusionProvesMotion(const Eigen::Vector3d& point_world, const SE3d& refer
   const Eigen::Vector3d direction = cam_from_world * point_world - origin;
   if (std::abs(direction.z()) < 1e-9) return true;
   const double threshold = options.DepthThreshold(measured_depth);
-  const bool distort = intrinsics.HasDistortion();
   int free = 0;
   for (const double z : {measured_depth - threshold, measured_depth, measured_depth + threshold}) {
     const double t = (z - origin.z()) / direction.z();
     if (!(t > 0.0 && t < 1.0) || !(z > 1e-6)) continue;  // the ray is not at this depth between them
-    const Eigen::Vector3d sample = origin + t * direction;
-    const Eigen::Vector2d normalised(sample.x() / sample.z(), sample.y() / sample.z());
-    const Eigen::Vector2d n = distort ? intrinsics.Distort(normalised) : normalised;
-    const int u = static_cast<int>(std::lround(intrinsics.fx * n.x() + intrinsics.cx));
-    const int v = static_cast<int>(std::lround(intrinsics.fy * n.y() + intrinsics.cy));
+    const Eigen::Vector2d image = ImagePosition(intrinsics, origin + t * direction);
+    const int u = static_cast<int>(std::lround(image.x()));
+    const int v = static_cast<int>(std::lround(image.y()));
     const int r = options.parallax_clearance_px;
     bool read = false;
     for (int y = std::max(0, v - r); y <= std::min(depth.rows - 1, v + r); ++y) {

@@ -173,28 +173,13 @@ TEST(ClassifyPoint, ItsOwnSurfaceNextToADepthEdgeIsStatic) {
   EXPECT_EQ(ClassifyPoint(p, depth, on), PointLabel::kStatic);
 }
 
-// A box (x in [0, 0.3] m, |y| <= 0.2 m) at z = 1.5 m before a wall at z = 3
-// m; the reference camera at the origin, the current one 0.3 m to its left,
-// both looking along z. Depth as the current camera sees the box at `box_x`.
-cv::Mat BoxBeforeWall(const CameraIntrinsics& camera, const SE3d& cam_from_world, double box_x) {
-  cv::Mat depth(camera.height, camera.width, CV_32FC1);
-  const Eigen::Vector3d centre = cam_from_world.Inverse().translation();
-  for (int v = 0; v < depth.rows; ++v) {
-    for (int u = 0; u < depth.cols; ++u) {
-      const Eigen::Vector3d ray = camera.Unproject({u, v}, 1.0);  // z = 1, camera axes = world axes
-      const Eigen::Vector3d at_box = centre + ray * 1.5;
-      const bool box = at_box.x() >= box_x && at_box.x() <= box_x + 0.3 && std::abs(at_box.y()) <= 0.2;
-      depth.at<float>(v, u) = box ? 1.5f : 3.0f;
-    }
-  }
-  return depth;
-}
-
+// The reference camera at the origin, the current one 0.3 m to its left,
+// both looking along z, at testing::BoxBeforeWallDepth's still box.
 TEST(OcclusionProvesMotion, ParallaxBehindAStillBoxIsNotMotion) {
   const CameraIntrinsics camera = TestCamera();
   const SE3d reference = SE3d::Identity();
   const SE3d current = LookAt({-0.3, 0.0, 0.0}, {-0.3, 0.0, 3.0});
-  const cv::Mat depth = BoxBeforeWall(camera, current, 0.0);
+  const cv::Mat depth = testing::BoxBeforeWallDepth(camera, current.Inverse().translation());
   const MultiViewOptions options;
   // A wall point the reference saw just past the box's right edge (its ray
   // crosses z = 1.5 at x = 0.325); from the left the box now hides it.

@@ -5,6 +5,8 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
+#include <cmath>
+
 #include "dlslam/data/camera.h"
 #include "dlslam/geometry/se3.h"
 
@@ -29,6 +31,21 @@ inline SE3d LookAt(const Eigen::Vector3d& centre, const Eigen::Vector3d& target)
 // A depth image (CV_32FC1) filled with `metres`.
 inline cv::Mat ConstantDepth(const CameraIntrinsics& camera, float metres) {
   return cv::Mat(camera.height, camera.width, CV_32FC1, cv::Scalar(metres));
+}
+
+// A box (x in [0, 0.3] m, |y| <= 0.2 m) at z = 1.5 m before a wall at z = 3
+// m, as a camera at `centre` looking along the world's z axis sees it
+// (CV_32FC1 metres).
+inline cv::Mat BoxBeforeWallDepth(const CameraIntrinsics& camera, const Eigen::Vector3d& centre) {
+  cv::Mat depth(camera.height, camera.width, CV_32FC1);
+  for (int v = 0; v < depth.rows; ++v) {
+    for (int u = 0; u < depth.cols; ++u) {
+      const Eigen::Vector3d at_box = centre + camera.Unproject({u, v}, 1.5);
+      const bool box = at_box.x() >= 0.0 && at_box.x() <= 0.3 && std::abs(at_box.y()) <= 0.2;
+      depth.at<float>(v, u) = box ? 1.5f : 3.0f;
+    }
+  }
+  return depth;
 }
 
 }  // namespace dlslam::dynamic::testing
