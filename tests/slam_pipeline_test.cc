@@ -40,9 +40,8 @@ class SlamPipelineTest : public ::testing::Test {
   }
 
   // Runs the system over the sequence; returns the camera trajectory.
-  static Trajectory Run(bool sequential, RunStats* stats = nullptr) {
+  static Trajectory Run(bool sequential, RunStats* stats = nullptr, SystemOptions options = SystemOptions()) {
     const io::RgbdSequence sequence = io::RgbdSequence::Open(*dir_);
-    SystemOptions options;
     options.sequential = sequential;
     SlamSystem slam(sequence.camera(), options);
     for (std::size_t i = 0; i < sequence.size(); ++i) {
@@ -88,6 +87,25 @@ TEST_F(SlamPipelineTest, SequentialModeIsReproducibleBitForBit) {
     EXPECT_EQ(a[i].translation, b[i].translation);
     EXPECT_EQ(a[i].rotation.coeffs(), b[i].rotation.coeffs());
   }
+}
+
+// The modes that remove moving content make a keyframe at least every
+// max_frames_between_keyframes_dynamic frames, mode orb every
+// max_frames_between_keyframes (here: never for lack of time alone).
+TEST_F(SlamPipelineTest, DynamicModesMakeKeyFramesMoreOften) {
+  SystemOptions options;
+  options.tracker.max_frames_between_keyframes = 1000;
+  options.tracker.max_frames_between_keyframes_dynamic = 10;
+  RunStats orb, geometry;
+  Run(/*sequential=*/true, &orb, options);
+  options.dynamic.mode = DynamicMode::kGeometry;
+  Run(/*sequential=*/true, &geometry, options);
+  EXPECT_EQ(orb.frames_tracked, 60);
+  EXPECT_EQ(geometry.frames_tracked, 60);
+  EXPECT_GE(geometry.mapping.keyframes_processed, 6);  // the first, then one in 10 frames at most
+  EXPECT_GE(geometry.mapping.keyframes_processed, orb.mapping.keyframes_processed + 3);
+  RecordProperty("orb_keyframes", orb.mapping.keyframes_processed);
+  RecordProperty("geometry_keyframes", geometry.mapping.keyframes_processed);
 }
 
 }  // namespace

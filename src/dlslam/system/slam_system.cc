@@ -39,6 +39,9 @@ std::unique_ptr<place::KeyFrameIndex> MakeKeyFrameIndex(const SystemOptions& opt
 TrackerOptions TrackerFor(const SystemOptions& options) {
   TrackerOptions tracker = options.tracker;
   if (options.localization_only) tracker.insert_keyframes = false;
+  if (options.dynamic.mode != DynamicMode::kOrb) {
+    tracker.max_frames_between_keyframes = tracker.max_frames_between_keyframes_dynamic;
+  }
   return tracker;
 }
 

@@ -37,6 +37,7 @@ void TrackerOptions::Check() const {
   DLSLAM_CHECK_GT(close_depth, 0.0);
   DLSLAM_CHECK(keyframe_tracked_ratio > 0 && keyframe_tracked_ratio <= 1);
   DLSLAM_CHECK_GT(max_frames_between_keyframes, 0);
+  DLSLAM_CHECK_GT(max_frames_between_keyframes_dynamic, 0);
   DLSLAM_CHECK_GT(max_mapping_backlog, 0);
   DLSLAM_CHECK_GE(min_new_points, 0);
   DLSLAM_CHECK(max_coasting_frames >= 0 && max_coasting_frames <= 1000,
