@@ -64,7 +64,10 @@ TEST(RealCrowdTest, FullModePosesEveryFrameAccurately) {
   EXPECT_EQ(r.at("frames").get<int>(), 300);
   EXPECT_GE(r.at("frames_posed").get<int>(), 299) << run.log;  // >= 99.5 %
   EXPECT_LE(r.at("pose_sources").at("coasted").get<int>(), 5);
-  EXPECT_GT(r.at("frames_reextracted").get<int>(), 100);  // people in most frames
+  // People in most frames: geometry removes enough for a re-extraction on a
+  // third of them (97 with keyframes at least every 10 frames and gated
+  // keyframes, 128 before, when geometry flagged more still structure).
+  EXPECT_GT(r.at("frames_reextracted").get<int>(), 75);
   EXPECT_LT(AteRmse(r), 0.022) << run.log;
   EXPECT_EQ(r.at("ate").at("pairs").get<int>(), r.at("frames_posed").get<int>());
   // Against the camera poses (the published marker poses transformed as the

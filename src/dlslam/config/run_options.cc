@@ -111,6 +111,8 @@ void Visit(TrackerOptions& o, V& v) {
   v.Value("gate_refuses", o.gate_refuses, {"", "a pose departing that far after the gate coasts instead"});
   v.Value("gate_on_median_motion", o.gate_on_median_motion,
           {"", "the gate's prediction moves on the median of the recent motions"});
+  v.Value("gated_keyframe_min_inliers", o.gated_keyframe_min_inliers,
+          {"inliers", "a gated frame becomes a keyframe only with this many (0 = never; modes semantic and full only)"});
   v.Value("new_map_after_lost_frames", o.new_map_after_lost_frames,
           {"frames", "lost this long without relocalizing: start a new map at the last pose; 0 = never"});
   v.Value("insert_keyframes", o.insert_keyframes, {"", "false: never extend the map (see localization_only)"});

@@ -42,6 +42,7 @@ TrackerOptions TrackerFor(const SystemOptions& options) {
   if (options.dynamic.mode != DynamicMode::kOrb) {
     tracker.max_frames_between_keyframes = tracker.max_frames_between_keyframes_dynamic;
   }
+  if (!UsesSemanticPrior(options.dynamic.mode)) tracker.gated_keyframe_min_inliers = 0;
   return tracker;
 }
 

@@ -38,6 +38,7 @@ void TrackerOptions::Check() const {
   DLSLAM_CHECK(keyframe_tracked_ratio > 0 && keyframe_tracked_ratio <= 1);
   DLSLAM_CHECK_GT(max_frames_between_keyframes, 0);
   DLSLAM_CHECK_GT(max_frames_between_keyframes_dynamic, 0);
+  DLSLAM_CHECK_GE(gated_keyframe_min_inliers, 0);
   DLSLAM_CHECK_GT(max_mapping_backlog, 0);
   DLSLAM_CHECK_GE(min_new_points, 0);
   DLSLAM_CHECK(max_coasting_frames >= 0 && max_coasting_frames <= 1000,
@@ -207,11 +208,14 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
   ++frames_since_keyframe_;
   last_matches_ = matches;
   // A map moved by loop closing during this call: the pose is from before,
-  // so it must not become a keyframe. Nor does a gated pose: the frame's
-  // matches disagreed about it, and a keyframe would write points into the
-  // map that agree with it.
+  // so it must not become a keyframe. Nor does a weakly supported gated
+  // pose: the frame's matches disagreed about it, and a keyframe would
+  // write points into the map that agree with it.
   const bool map_moved = map_->Generation() != generation;
-  if (!map_moved && !result.gated && NeedNewKeyFrame(*frame, matches, reference)) {
+  const bool gate_allows_keyframe =
+      !result.gated ||
+      (options_.gated_keyframe_min_inliers > 0 && result.inliers >= options_.gated_keyframe_min_inliers);
+  if (!map_moved && gate_allows_keyframe && NeedNewKeyFrame(*frame, matches, reference)) {
     if (hold_keyframe) {
       result.held_keyframe = KeyFrameCandidate{frame, pose, matches, generation};
     } else {

@@ -147,6 +147,17 @@ struct TrackerOptions {
   // kitchen (static) orb 0.0373 -> 0.0347 m, full 0.0380 -> 0.0329 m;
   // Bonn threaded full the same (7 runs each, medians 0.0172 / 0.0176 m).
   bool gate_on_median_motion = true;
+  // A gated frame becomes a keyframe (when one is due) only if the solve
+  // near the prediction kept at least this many inliers (0 = never). With
+  // none the map falls behind a moving camera in a crowd: semi-real k5s8
+  // (people on 70-85 % of the view, the camera at 45 cm/s) went 17 gated
+  // frames without one, its matches fell to 26 and the pose slid 10 cm
+  // (0.120 -> 0.056 m with 100). Few inliers still make none: five
+  // keyframes in five weakly supported gated frames once slid 0.5 m.
+  // SlamSystem uses it in the modes with the network's masks (semantic,
+  // full) and 0 in modes orb and geometry, where the inliers near the
+  // prediction may be people (Bonn geometry 0.080 -> 0.35 m with 100).
+  int gated_keyframe_min_inliers = 100;
   // The N-th frame in a row that would have no pose (tracking, coasting and
   // relocalization all failed on it) starts a new map at the last pose
   // instead (0 = never: stay lost) [frames; 1 = at once]. Coasting has
