@@ -39,9 +39,12 @@ std::unique_ptr<place::KeyFrameIndex> MakeKeyFrameIndex(const SystemOptions& opt
 TrackerOptions TrackerFor(const SystemOptions& options) {
   TrackerOptions tracker = options.tracker;
   if (options.localization_only) tracker.insert_keyframes = false;
+  // Crowds need fresher keyframes; a static scene in mode orb would only
+  // pay for them (TrackerOptions::max_frames_between_keyframes_dynamic).
   if (options.dynamic.mode != DynamicMode::kOrb) {
     tracker.max_frames_between_keyframes = tracker.max_frames_between_keyframes_dynamic;
   }
+  // Without the network's masks the inliers of a gated solve may be people.
   if (!UsesSemanticPrior(options.dynamic.mode)) tracker.gated_keyframe_min_inliers = 0;
   return tracker;
 }
