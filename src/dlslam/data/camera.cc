@@ -9,14 +9,6 @@
 
 namespace dlslam {
 
-Eigen::Vector2d CameraIntrinsics::Distort(const Eigen::Vector2d& xn) const {
-  const double x = xn.x(), y = xn.y();
-  const double r2 = x * x + y * y;
-  const double radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
-  return {x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x),
-          y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y};
-}
-
 namespace {
 
 // Why the radial distortion is not a lens: it must grow monotonically from the
