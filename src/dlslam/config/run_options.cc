@@ -272,8 +272,8 @@ void Visit(SemanticThreadOptions& o, V& v) {
   v.Begin("segmenter", "the segmentation network");
   v.Value("backend", o.segmenter.backend, {"", "inference backend"});
   v.Value("model_path", o.segmenter.model_path, {"", "ONNX model; empty = the shipped one"});
-  v.Value("input_width", o.segmenter.input_width, {"px", "network input"});
-  v.Value("input_height", o.segmenter.input_height, {"px", "network input"});
+  v.Value("input_width", o.segmenter.input_width, {"px", "network input; 0 = the size the model declares"});
+  v.Value("input_height", o.segmenter.input_height, {"px", "network input; 0 = the size the model declares"});
   v.Value("num_classes", o.segmenter.num_classes, {"", "output channels"});
   v.Value("dynamic_classes", o.segmenter.dynamic_classes, {"", "classes that may move (people)"});
   v.Value("movable_classes", o.segmenter.movable_classes, {"", "classes that move when pushed (chairs)"});

@@ -16,6 +16,7 @@
 
 #include "dlslam/io/file_util.h"
 #include "dlslam/semantic/label_maps.h"
+#include "dlslam/semantic/onnx_shape.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam::semantic {
@@ -102,6 +103,16 @@ void OnnxSegmenter::Load(std::string_view model_bytes) {
     throw InputError(model_name_, 0, "not a loadable ONNX model (corrupt or truncated?): {}", OpenCvReason(e));
   }
   if (net_.empty()) throw InputError(model_name_, 0, "ONNX model has no layers");
+  if (options_.input_width == 0 && options_.input_height == 0) {
+    const std::optional<DeclaredSize> declared = DeclaredInputSize(model_bytes);
+    if (!declared) {
+      throw InputError(model_name_, 0,
+                       "ONNX model declares no fixed 1 x 3 x H x W input: give its size "
+                       "(semantic.segmenter.input_width / input_height)");
+    }
+    options_.input_width = declared->width;
+    options_.input_height = declared->height;
+  }
   net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
   net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
 

@@ -15,8 +15,10 @@ namespace dlslam::semantic {
 
 class OnnxSegmenter : public Segmenter {
  public:
-  // Reads options.model_path (must be set). Throws InputError naming the
-  // file when it is missing, empty, not a loadable ONNX network, or when one
+  // Reads options.model_path (must be set); an input size of 0 x 0 is the
+  // one the file declares. Throws InputError naming the file when it is
+  // missing, empty, not a loadable ONNX network, declares no fixed input
+  // while the options give none, or when one
   // forward pass on a zero input does not give 1 x num_classes x
   // input_height x input_width.
   explicit OnnxSegmenter(const SegmenterOptions& options);

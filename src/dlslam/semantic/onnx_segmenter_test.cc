@@ -153,6 +153,13 @@ TEST_F(BadModelTest, TruncatedOrGarbageFile) {
   EXPECT_THAT(LoadError(Write("text.onnx", "this is not a model\n")), HasSubstr("ONNX"));
 }
 
+TEST_F(BadModelTest, ASizeGivenMustBeTheModels) {
+  SegmenterOptions other;
+  other.input_width = 337;
+  other.input_height = 257;
+  EXPECT_THAT(LoadError(ShippedModel(), other), HasSubstr("1 x 3 x 257 x 337"));
+}
+
 TEST_F(BadModelTest, WrongOutputShape) {
   EXPECT_THAT(LoadError(Fixture("two_classes.onnx")), HasSubstr("output is 1 x 2 x 209 x 273"));
   EXPECT_THAT(LoadError(Fixture("half_size.onnx")), HasSubstr("output is 1 x 3 x 105 x 137"));
@@ -173,7 +180,12 @@ TEST(OnnxSegmenterOptions, CheckNamesTheBadValue) {
   options.movable_classes = {1};  // also dynamic
   EXPECT_THROW(OnnxSegmenter{options}, Error);
   options = IdentityOptions();
-  options.input_width = 0;
+  options.input_width = 0;  // one side given, the other the model's: refused
+  options.input_height = 209;
+  EXPECT_THROW(OnnxSegmenter{options}, Error);
+  options = IdentityOptions();
+  options.input_width = -273;
+  options.input_height = -209;
   EXPECT_THROW(OnnxSegmenter{options}, Error);
   options = IdentityOptions();
   options.backend = "tensorrt";
@@ -181,6 +193,24 @@ TEST(OnnxSegmenterOptions, CheckNamesTheBadValue) {
   options = IdentityOptions();
   options.dynamic_margin_px = -1;
   EXPECT_THROW(MakeSegmenter(options), Error);
+}
+
+TEST(OnnxSegmenter, RunsAtTheSizeTheModelDeclares) {
+  const OnnxSegmenter shipped(SegmenterOptions{.model_path = ShippedModel()});
+  EXPECT_EQ(shipped.options().input_width, 273);
+  EXPECT_EQ(shipped.options().input_height, 209);
+}
+
+TEST(OnnxSegmenter, RunsATeacherAtItsOwnSizeWithoutSizeOptions) {
+  DLSLAM_REQUIRE_SHARED_DATA(path, "models/deeplabv3-mnv2-voc/deeplabv3_mnv2_dm05_voc_257x337.onnx");
+  SegmenterOptions voc{.model_path = path};
+  voc.num_classes = 21;
+  voc.dynamic_classes = {15};
+  voc.movable_classes = {9};
+  OnnxSegmenter teacher(voc);
+  EXPECT_EQ(teacher.options().input_width, 337);
+  EXPECT_EQ(teacher.options().input_height, 257);
+  EXPECT_EQ(teacher.Segment(ColouredFrame()).labels.size(), cv::Size(640, 480));
 }
 
 TEST(MakeSegmenter, LoadsTheShippedModelByDefault) {

@@ -12,8 +12,9 @@ namespace dlslam::semantic {
 
 void SegmenterOptions::Check() const {
   DLSLAM_CHECK(backend == "opencv-dnn", "unknown segmentation backend '{}' (known: opencv-dnn)", backend);
-  DLSLAM_CHECK(input_width > 0 && input_height > 0, "network input size {}x{} [px] must be positive",
-               input_width, input_height);
+  DLSLAM_CHECK((input_width == 0 && input_height == 0) || (input_width > 0 && input_height > 0),
+               "network input size {}x{} [px] must be positive, or 0x0 for the model's own", input_width,
+               input_height);
   DLSLAM_CHECK(num_classes >= 1 && num_classes <= 255, "number of classes {} must be in 1..255", num_classes);
   for (const auto* ids : {&dynamic_classes, &movable_classes}) {
     for (int id : *ids) {

@@ -24,11 +24,13 @@ struct SegmenterOptions {
   // ONNX model file; "" = kDefaultModelFile found by io::FindModelFile
   // ($DLSLAM_MODEL_DIR, <exe>/../share/dlslam/models, the source tree's models/).
   std::filesystem::path model_path;
-  // Network input [px]: the model's fixed size (16k+1 for DeepLab models).
-  // The shipped model was trained at 257x337 and exported at 209x273 for
-  // speed (docs/semantic.md, "Input size").
-  int input_width = 273;
-  int input_height = 209;
+  // Network input [px]; 0 x 0 = the fixed size the model file declares
+  // (semantic/onnx_shape.h), so a model exported at another size needs no
+  // option beside it. The shipped model declares 209x273 (trained at 257x337,
+  // exported smaller for speed: docs/semantic.md, "Input size"). After
+  // loading, a segmenter's options() hold the size it runs at.
+  int input_width = 0;
+  int input_height = 0;
   // Output channels (classes) the model must have; checked by a dry forward at load.
   int num_classes = 3;
   // Class ids removed from SLAM in every frame (default: person).
