@@ -153,6 +153,16 @@ TEST_F(BadModelTest, TruncatedOrGarbageFile) {
   EXPECT_THAT(LoadError(Write("text.onnx", "this is not a model\n")), HasSubstr("ONNX"));
 }
 
+TEST_F(BadModelTest, NoDeclaredSizeNeedsOneGiven) {
+  EXPECT_THAT(LoadError(Fixture("any_size.onnx")), HasSubstr("declares no fixed 1 x 3 x H x W input"));
+  SegmenterOptions sized;
+  sized.model_path = Fixture("any_size.onnx");
+  sized.input_width = 273;
+  sized.input_height = 209;
+  const OnnxSegmenter segmenter(sized);
+  EXPECT_EQ(segmenter.options().input_width, 273);
+}
+
 TEST_F(BadModelTest, ASizeGivenMustBeTheModels) {
   SegmenterOptions other;
   other.input_width = 337;

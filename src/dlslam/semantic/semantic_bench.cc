@@ -22,8 +22,10 @@
 #include <string>
 
 #include "dlslam/features/orb_extractor.h"
+#include "dlslam/io/file_util.h"
 #include "dlslam/semantic/label_maps.h"
 #include "dlslam/semantic/onnx_segmenter.h"
+#include "dlslam/semantic/onnx_shape.h"
 #include "dlslam/semantic/segmentation_worker.h"
 
 namespace dlslam::semantic {
@@ -111,7 +113,12 @@ void BM_Postprocess(benchmark::State& state) {
   const int classes = static_cast<int>(state.range(0));
   SegmenterOptions options;
   options.num_classes = classes;
-  const int shape[] = {1, classes, 209, 273};
+  static const std::optional<DeclaredSize> size = DeclaredInputSize(io::ReadFileBytes(OptionsFor(kOurs).model_path));
+  if (!size) {
+    state.SkipWithError("the shipped model declares no input size");
+    return;
+  }
+  const int shape[] = {1, classes, size->height, size->width};
   cv::Mat logits(4, shape, CV_32F);
   cv::randn(logits, 0, 3);
   for (auto _ : state) {
