@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git
-  libeigen3-dev libopencv-dev libjpeg-dev libceres-dev libyaml-cpp-dev libcli11-dev
+  libeigen3-dev libopencv-dev libjpeg-dev libdeflate-dev libceres-dev libyaml-cpp-dev libcli11-dev
   libspdlog-dev libfmt-dev nlohmann-json3-dev libtbb-dev
   libcurl4-openssl-dev libarchive-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev

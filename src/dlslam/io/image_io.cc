@@ -10,6 +10,7 @@
 #include "dlslam/io/file_util.h"
 #include "dlslam/io/image_integrity.h"
 #include "dlslam/io/jpeg_decode.h"
+#include "dlslam/io/png_decode.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam::io {
@@ -42,6 +43,11 @@ cv::Mat Decode(const ImageSource& source, const char* kind, int flags) {
     JpegDecodeResult jpeg = DecodeJpeg(bytes, kMaxImageSide);
     if (jpeg.image.empty()) Fail(source, kind, jpeg.problem);
     return jpeg.image;
+  }
+  if (flags == cv::IMREAD_UNCHANGED) {
+    PngDecodeResult png = DecodePng(bytes, kMaxImageSide);
+    if (!png.problem.empty()) Fail(source, kind, png.problem);
+    if (!png.image.empty()) return png.image;
   }
   cv::Mat image;
   try {
