@@ -95,6 +95,8 @@ void Visit(TrackerOptions& o, V& v) {
   v.Value("keyframe_tracked_ratio", o.keyframe_tracked_ratio, {"", "new keyframe below this share of the reference's points"});
   v.Value("max_frames_between_keyframes", o.max_frames_between_keyframes, {"frames", "new keyframe after this many"});
   v.Value("max_frames_between_keyframes_dynamic", o.max_frames_between_keyframes_dynamic, {"frames", "... in modes semantic, geometry and full"});
+  v.Value("crowded_removed_share", o.crowded_removed_share,
+          {"", "a frame with this share of the image removed makes no keyframe for its untracked close points (1 = off)"});
   v.Value("max_mapping_backlog", o.max_mapping_backlog, {"keyframes", "no new keyframe while this many wait for mapping"});
   v.Value("min_new_points", o.min_new_points, {"points", "a keyframe creates at least this many depth points"});
   v.Value("max_coasting_frames", o.max_coasting_frames, {"frames", "in a row on the motion model when tracking fails"});

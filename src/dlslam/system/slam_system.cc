@@ -247,8 +247,10 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   // A frame that waited for its own masks has the held keyframe's too (they
   // were queued before): it goes into the map before this frame is tracked.
   if (!masks.carried) ReleaseHeldKeyFrame(/*wait=*/true);
-  const TrackingResult result =
-      tracker_.Track(frame, /*hold_keyframe=*/masks.carried && options_.semantic.keyframes_wait_for_own_masks);
+  TrackContext context;
+  context.hold_keyframe = masks.carried && options_.semantic.keyframes_wait_for_own_masks;
+  context.removed_share = removal.image_share();
+  const TrackingResult result = tracker_.Track(frame, context);
   timings_.Add("tracking", watch.ElapsedMs());
   if (semantic_) semantic_->SetPose(frame_id, result.cam_from_world);
   // A gated pose disagreed with its own matches: not a view to test against.

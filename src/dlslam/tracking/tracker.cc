@@ -39,6 +39,8 @@ void TrackerOptions::Check() const {
   DLSLAM_CHECK_GT(max_frames_between_keyframes, 0);
   DLSLAM_CHECK_GT(max_frames_between_keyframes_dynamic, 0);
   DLSLAM_CHECK_GE(gated_keyframe_min_inliers, 0);
+  DLSLAM_CHECK(crowded_removed_share >= 0 && crowded_removed_share <= 1,
+               "TrackerOptions::crowded_removed_share {} outside [0, 1]", crowded_removed_share);
   DLSLAM_CHECK_GT(max_mapping_backlog, 0);
   DLSLAM_CHECK_GE(min_new_points, 0);
   DLSLAM_CHECK(max_coasting_frames >= 0 && max_coasting_frames <= 1000,
@@ -79,8 +81,10 @@ Tracker::Tracker(const TrackerOptions& options, Map* map, const place::KeyFrameI
   if (index != nullptr) relocalizer_.emplace(options_.relocalization, map_, index);
 }
 
-TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool hold_keyframe) {
+TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, const TrackContext& context) {
   DLSLAM_CHECK(frame != nullptr);
+  DLSLAM_CHECK(context.removed_share >= 0 && context.removed_share <= 1, "TrackContext::removed_share {} outside [0, 1]",
+               context.removed_share);
   TrackingResult result;
   if (state_ == TrackingState::kNotInitialized) {
     if (StartMap(frame, SE3d::Identity(), &result)) state_ = TrackingState::kOk;  // the first keyframe defines the world
@@ -215,8 +219,9 @@ TrackingResult Tracker::Track(const std::shared_ptr<const Frame>& frame, bool ho
   const bool gate_allows_keyframe =
       !result.gated ||
       (options_.gated_keyframe_min_inliers > 0 && result.inliers >= options_.gated_keyframe_min_inliers);
-  if (!map_moved && gate_allows_keyframe && NeedNewKeyFrame(*frame, matches, reference)) {
-    if (hold_keyframe) {
+  const bool crowded = context.removed_share >= options_.crowded_removed_share;
+  if (!map_moved && gate_allows_keyframe && NeedNewKeyFrame(*frame, matches, reference, crowded)) {
+    if (context.hold_keyframe) {
       result.held_keyframe = KeyFrameCandidate{frame, pose, matches, generation};
     } else {
       reference_keyframe_ = InsertKeyFrame(frame, pose, matches);
@@ -477,8 +482,8 @@ void Tracker::RememberPose(const SE3d& pose, KeyFrameId reference, std::uint64_t
   last_from_reference_ = reference_pose ? std::optional<SE3d>(pose * reference_pose->Inverse()) : std::nullopt;
 }
 
-bool Tracker::NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches,
-                              KeyFrameId reference) const {
+bool Tracker::NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches, KeyFrameId reference,
+                              bool crowded) const {
   if (!options_.insert_keyframes) return false;
   if (mapping_backlog_ && mapping_backlog_() >= static_cast<std::size_t>(options_.max_mapping_backlog)) return false;
   const int reference_tracked = map_->TrackedPoints(reference, map_->NumKeyFrames() <= 2 ? 2 : 3);
@@ -490,7 +495,8 @@ bool Tracker::NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>&
     if (z <= 0 || z >= options_.close_depth) continue;
     (matches[i] != kNoId ? close_tracked : close_untracked)++;
   }
-  const bool need_close = close_tracked < 100 && close_untracked > 70;
+  // In a crowd the untracked close keypoints are mostly on people (TrackerOptions::crowded_removed_share).
+  const bool need_close = !crowded && close_tracked < 100 && close_untracked > 70;
   const bool weak = tracked < options_.keyframe_tracked_ratio * reference_tracked || need_close;
   const bool timeout = frames_since_keyframe_ >= options_.max_frames_between_keyframes;
   return (weak || timeout) && tracked >= kMinKeyFrameMatches;

@@ -81,6 +81,20 @@ struct TrackerOptions {
   // keyframes (7-Scenes kitchen 25 -> 57), which mode orb's 8 ms frames
   // would feel (10.6 ms median, p95 19 ms) and full mode's do not.
   int max_frames_between_keyframes_dynamic = 10;
+  // A frame whose removed share (the dynamic stage's mask, of the image)
+  // is at least this is crowded: there, many untracked close keypoints do
+  // not make a keyframe (ORB-SLAM's close-point rule), only tracking
+  // weakening (keyframe_tracked_ratio) or the timeout do [0, 1]; 1 = off.
+  // In a crowd the untracked close keypoints are mostly on people the mask
+  // missed and on their outlines: the rule fired every other frame there,
+  // wrote them into the map as points, and the next frames tracked the
+  // walkers (semi-real kitchen, 8 people, seed 1: 0.132 m, 3.7x the
+  // kitchen without people). 0.4 and 0.5 gave the same on the battery of
+  // docs/real-data.md: Bonn full 0.0131 -> 0.0125 m, the 12 semi-real
+  // kitchens' sum 0.546 -> 0.478 m (k8s1 0.132 -> 0.047, k5s8 0.056 ->
+  // 0.078). Dropping every keyframe in a crowd but the timeout's instead
+  // was chaotic (sum 0.446 / 0.529 / 0.560 m at 0.5 / 0.4 / 0.6).
+  double crowded_removed_share = 0.5;
   // No new keyframe while this many wait for local mapping (ORB-SLAM: 3): it
   // would only wait in the queue, and tracking with it (SetMappingBacklog).
   int max_mapping_backlog = 3;
@@ -223,6 +237,16 @@ struct TrackingResult {
 // min_init_cells)?
 bool CanStartMap(const Frame& frame, const TrackerOptions& options);
 
+// What the system knows of a frame besides its keypoints.
+struct TrackContext {
+  // A keyframe this frame would make is returned as
+  // TrackingResult::held_keyframe instead (a map's first keyframe never is).
+  bool hold_keyframe = false;
+  // Share of the image the dynamic stage removed, in [0, 1]
+  // (TrackerOptions::crowded_removed_share).
+  double removed_share = 0.0;
+};
+
 class Tracker {
  public:
   // With `index` (outlives the tracker; may be filled by another thread) a
@@ -230,9 +254,7 @@ class Tracker {
   Tracker(const TrackerOptions& options, Map* map, const place::KeyFrameIndex* index = nullptr);
 
   // Tracks one frame (its static keypoints: Frame::WithoutMasked).
-  // `hold_keyframe`: a keyframe this frame would make is returned as
-  // TrackingResult::held_keyframe instead (a map's first keyframe never is).
-  TrackingResult Track(const std::shared_ptr<const Frame>& frame, bool hold_keyframe = false);
+  TrackingResult Track(const std::shared_ptr<const Frame>& frame, const TrackContext& context = {});
   // Makes a held keyframe of the keypoints of `candidate` that `keep` marks
   // (e.g. those outside the frame's own person mask); the frames tracked
   // since go on as they were. nullopt when the map moved since it was
@@ -332,7 +354,8 @@ class Tracker {
   void ForgetMotion();
   // `generation`: the map's when the pose was computed.
   void RememberPose(const SE3d& pose, KeyFrameId reference, std::uint64_t generation);
-  bool NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches, KeyFrameId reference) const;
+  bool NeedNewKeyFrame(const Frame& frame, const std::vector<MapPointId>& matches, KeyFrameId reference,
+                       bool crowded) const;
   // Adds the keyframe and its new points; the next frame searches its points
   // unless `search_its_points` is false (a held keyframe, older than the
   // last frame).

@@ -99,7 +99,7 @@ TEST(Tracker, AHeldKeyFrameIsMadeLaterFromTheKeptKeypoints) {
   std::optional<KeyFrameCandidate> held;
   int i = 1;
   for (; i < 150 && !held; ++i) {
-    const TrackingResult r = tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i), /*hold_keyframe=*/true);
+    const TrackingResult r = tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i), {.hold_keyframe = true});
     ASSERT_EQ(r.state, TrackingState::kOk) << "frame " << i;
     EXPECT_FALSE(r.new_keyframe);
     held = r.held_keyframe;
@@ -109,7 +109,7 @@ TEST(Tracker, AHeldKeyFrameIsMadeLaterFromTheKeptKeypoints) {
   const int held_at = i - 1;
   // Two more frames before the masks "arrive".
   for (int k = 0; k < 2; ++k, ++i) {
-    ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i), true).state, TrackingState::kOk);
+    ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i), {.hold_keyframe = true}).state, TrackingState::kOk);
   }
   // The right half of the image was a person.
   std::vector<bool> keep(held->frame->size());
@@ -132,6 +132,49 @@ TEST(Tracker, AHeldKeyFrameIsMadeLaterFromTheKeptKeypoints) {
   EXPECT_FALSE(tracker.InsertHeldKeyFrame(*held, std::vector<bool>(keep.size(), false)).has_value());
   ASSERT_EQ(map.ApplyCorrectedPoses({{*id, SE3d::Exp(Vector6d::Constant(0.01)) * kf->cam_from_world}}), 1);
   EXPECT_FALSE(tracker.InsertHeldKeyFrame(*held, keep).has_value());
+}
+
+// A cluster of close landmarks walks into a view of far walls: its
+// keypoints are close (1-1.5 m, close_depth 2 m) and untracked, the walls'
+// tracked ones are not close, so ORB-SLAM's close-point rule asks for a
+// keyframe at once. In a crowd it must not (the other two rules are off).
+TEST(Tracker, InACrowdUntrackedClosePointsMakeNoKeyFrame) {
+  const auto walls = testing::LandmarkScene::Room(6000, 3);
+  testing::LandmarkScene walked_in = walls;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> side(-0.4, 0.4), depth(1.0, 1.5);
+  const SE3d world_from_cam = CamFromWorld(0).Inverse();
+  const testing::LandmarkScene other = testing::LandmarkScene::Room(150, 11);  // fresh descriptors
+  for (std::size_t k = 0; k < other.descriptors.size(); ++k) {
+    walked_in.points.push_back(world_from_cam * Eigen::Vector3d(side(rng), side(rng), depth(rng)));
+    walked_in.descriptors.push_back(other.descriptors[k]);
+  }
+  const auto keyframes_made = [&](double removed_share, double crowded_removed_share) {
+    TrackerOptions options;
+    options.close_depth = 2.0;
+    options.keyframe_tracked_ratio = 0.01;
+    options.max_frames_between_keyframes = 1000;
+    options.crowded_removed_share = crowded_removed_share;
+    Map map;
+    Tracker tracker(options, &map);
+    EXPECT_TRUE(tracker.Track(walls.MakeFrame(CamFromWorld(0), 0.0, 100)).new_keyframe);
+    for (int i = 1; i < 10; ++i) {
+      const TrackingResult r =
+          tracker.Track(walked_in.MakeFrame(CamFromWorld(0), i / 30.0, 100 + i), {.removed_share = removed_share});
+      EXPECT_EQ(r.state, TrackingState::kOk) << "frame " << i;
+    }
+    return map.NumKeyFrames();
+  };
+  EXPECT_GE(keyframes_made(0.0, 0.5), 2u);  // the rule fires uncrowded
+  EXPECT_EQ(keyframes_made(0.6, 0.5), 1u);  // the first keyframe only
+  EXPECT_GE(keyframes_made(0.6, 1.0), 2u);  // the rule off: as uncrowded
+  EXPECT_GE(keyframes_made(0.4, 0.5), 2u);  // below the threshold
+  TrackerOptions bad;
+  bad.crowded_removed_share = 1.5;
+  EXPECT_THROW(bad.Check(), Error);
+  Map map;
+  Tracker tracker(TrackerOptions(), &map);
+  EXPECT_THROW(tracker.Track(walls.MakeFrame(CamFromWorld(0), 0.0, 100), {.removed_share = -0.1}), Error);
 }
 
 TEST(Tracker, WaitsForDepthThenInitializes) {
