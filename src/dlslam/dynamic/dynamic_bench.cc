@@ -7,6 +7,7 @@
 
 #include "dlslam/dynamic/free_space.h"
 #include "dlslam/dynamic/geometry_detector.h"
+#include "dlslam/dynamic/mask_fusion.h"
 #include "dlslam/dynamic/mask_warp.h"
 #include "dlslam/dynamic/tools/keyframe_eval.h"
 
@@ -21,6 +22,7 @@ struct Fixture {
   CameraIntrinsics camera;
   std::vector<ReferenceView> references;
   std::vector<std::pair<cv::Mat, SE3d>> views;  // frames 45, 50, 55: depth, cam_from_world
+  cv::Mat objects;                              // the frame's rendered objects (people, chairs): 255
 };
 
 const Fixture& GetFixture() {
@@ -35,6 +37,7 @@ const Fixture& GetFixture() {
     const auto& current = cache.Get(60);
     f.depth = current.rendered.depth;
     f.cam_from_world = current.rendered.world_from_cam.Inverse();
+    f.objects = current.rendered.mask != 0;
     for (int r = 1; r <= 5; ++r) {
       const auto& keyframe = cache.Get(60 - 6 * r);
       f.references.push_back(evaluation::MakeReferenceView(
@@ -155,5 +158,23 @@ void BM_DetectWithFreeSpace(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_DetectWithFreeSpace)->Unit(benchmark::kMillisecond);
+
+// The dynamic stage's two fusions of a frame (mode full, policy union,
+// dilation 5 px): the network's mask alone (DynamicStage::TakePrior), then
+// with the geometry's regions (DynamicStage::Process).
+void BM_FuseDynamicMasks(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  GeometryDetector detector(GeometryOptions{});
+  const GeometryResult geometry = detector.Detect(f.depth, f.camera, f.cam_from_world, f.references);
+  const FusionOptions options;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(FuseDynamicMasks({f.objects, {}}, {}, options).data);
+    benchmark::DoNotOptimize(FuseDynamicMasks({f.objects, {}}, geometry, options).data);
+  }
+  state.counters["prior_share"] = cv::countNonZero(f.objects) / static_cast<double>(f.objects.total());
+  state.counters["geometry_share"] =
+      cv::countNonZero(geometry.dynamic_mask) / static_cast<double>(geometry.dynamic_mask.total());
+}
+BENCHMARK(BM_FuseDynamicMasks)->Unit(benchmark::kMillisecond);
 
 }  // namespace
