@@ -156,7 +156,11 @@ LocalMapSnapshot Map::GetLocalMap(const std::vector<MapPointId>& matched_points,
     for (std::size_t k = 0; k < std::min<std::size_t>(10, neighbours.size()); ++k) take(neighbours[k].second);
     if (kf.parent != kNoId) take(kf.parent);
   }
-  std::unordered_set<MapPointId> seen;
+  std::size_t slots = 0;
+  for (KeyFrameId id : snap.keyframes) slots += keyframes_.at(id).points.size();
+  // Sized once: growing it rehashed every point several times (the bulk of the call).
+  std::unordered_set<MapPointId> seen(2 * slots);
+  snap.points.reserve(slots);
   for (KeyFrameId id : snap.keyframes) {
     for (MapPointId pid : keyframes_.at(id).points) {
       if (pid == kNoId || !seen.insert(pid).second) continue;
