@@ -6,14 +6,11 @@
 #include <algorithm>
 #include <array>
 
+#include "dlslam/io/png_format.h"
 #include "dlslam/util/crc32.h"
 
 namespace dlslam::io {
 namespace {
-
-std::uint32_t BigEndian32(const std::uint8_t* p) {
-  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
-}
 
 std::string ChunkName(const std::uint8_t* p) {
   std::string name(reinterpret_cast<const char*>(p), 4);
@@ -97,8 +94,7 @@ std::optional<std::string> CheckJpeg(std::span<const std::uint8_t> b) {
 }  // namespace
 
 std::optional<std::string> CheckImageIntegrity(std::span<const std::uint8_t> bytes) {
-  static constexpr std::array<std::uint8_t, 8> kPng = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
-  if (bytes.size() >= kPng.size() && std::equal(kPng.begin(), kPng.end(), bytes.begin())) return CheckPng(bytes);
+  if (HasPngSignature(bytes)) return CheckPng(bytes);
   if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) return CheckJpeg(bytes);
   return std::nullopt;
 }

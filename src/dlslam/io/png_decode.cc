@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <libdeflate.h>
 
+#include "dlslam/io/png_format.h"
+
 #include <algorithm>
 #include <array>
 #include <cstdlib>
@@ -12,10 +14,6 @@
 
 namespace dlslam::io {
 namespace {
-
-std::uint32_t BigEndian32(const std::uint8_t* p) {
-  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
-}
 
 bool IsChunk(const std::uint8_t* name, const char* expected) { return std::memcmp(name, expected, 4) == 0; }
 
@@ -129,11 +127,8 @@ struct DecompressorDeleter {
 }  // namespace
 
 PngDecodeResult DecodePng(std::span<const std::uint8_t> bytes, int max_side) {
-  static constexpr std::array<std::uint8_t, 8> kSignature = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
   PngDecodeResult result;
-  if (bytes.size() < kSignature.size() || !std::equal(kSignature.begin(), kSignature.end(), bytes.begin())) {
-    return result;
-  }
+  if (!HasPngSignature(bytes)) return result;
   // The chunks: IHDR first, the IDATs' data concatenated, up to IEND.
   // Reused by the thread's next image: freshly allocated, their pages
   // faulted in on every call cost a third of the decode.
@@ -141,13 +136,13 @@ PngDecodeResult DecodePng(std::span<const std::uint8_t> bytes, int max_side) {
   compressed.clear();
   Header header;
   bool ended = false;
-  for (std::size_t pos = kSignature.size(); !ended;) {
+  for (std::size_t pos = kPngSignature.size(); !ended;) {
     if (pos + 12 > bytes.size()) return result;  // truncated: OpenCV's path reports it
     const std::uint32_t length = BigEndian32(&bytes[pos]);
     if (length > bytes.size() - pos - 12) return result;
     const std::uint8_t* name = &bytes[pos + 4];
     const std::uint8_t* data = &bytes[pos + 8];
-    if (pos == kSignature.size()) {
+    if (pos == kPngSignature.size()) {
       if (!IsChunk(name, "IHDR") || length != 13) return result;
       header = ReadHeader(data);
       if (header.channels == 0) return result;
