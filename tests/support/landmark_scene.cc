@@ -1,6 +1,7 @@
 #include "tests/support/landmark_scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace dlslam::testing {
@@ -63,6 +64,14 @@ std::shared_ptr<Frame> LandmarkScene::MakeFrame(const SE3d& cam_from_world, doub
   }
   if (landmark_of) *landmark_of = visible;
   return std::make_shared<Frame>(Frame::Create(timestamp, keypoints, desc, depth, camera, pyramid, 0.1, max_depth));
+}
+
+SE3d SmoothRoomPath(int i) {
+  const double t = i / 30.0;
+  Eigen::Matrix<double, 6, 1> xi;  // world_from_cam's tangent
+  xi << 0.4 * std::sin(0.8 * t), 0.1 * std::sin(1.3 * t), 0.3 * std::sin(0.5 * t), 0.05 * std::sin(0.7 * t),
+      0.25 * std::sin(0.6 * t), 0.03 * std::sin(t);
+  return SE3d::Exp(xi).Inverse();
 }
 
 }  // namespace dlslam::testing

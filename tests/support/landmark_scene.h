@@ -33,4 +33,8 @@ struct LandmarkScene {
                                    std::vector<int>* landmark_of = nullptr) const;
 };
 
+// Frame i (at 30 Hz) of a smooth camera path through the room: ~1 m of
+// translation, +-15 deg yaw, as cam_from_world.
+SE3d SmoothRoomPath(int i);
+
 }  // namespace dlslam::testing

@@ -6,43 +6,17 @@
 #include <random>
 
 #include "dlslam/util/check.h"
+#include "dlslam/tracking/tracker_test_support.h"
 #include "tests/support/landmark_scene.h"
 
 namespace dlslam {
 namespace {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
+using testing::SmoothRoomPath;
 
-// A smooth camera path through the room: ~1 m of translation, +-15 deg yaw.
-SE3d CamFromWorld(int i) {
-  const double t = i / 30.0;
-  Vector6d xi;
-  xi << 0.4 * std::sin(0.8 * t), 0.1 * std::sin(1.3 * t), 0.3 * std::sin(0.5 * t), 0.05 * std::sin(0.7 * t),
-      0.25 * std::sin(0.6 * t), 0.03 * std::sin(t);
-  return SE3d::Exp(xi).Inverse();  // xi describes world_from_cam
-}
 
-// Distance between the camera centres of two cam_from_world poses [m].
-double CentreDistance(const SE3d& a, const SE3d& b) {
-  return (a.Inverse().translation() - b.Inverse().translation()).norm();
-}
-
-// A frame without keypoints at `timestamp`: the lens covered, a black image.
-std::shared_ptr<Frame> CoveredFrame(const testing::LandmarkScene& scene, double timestamp) {
-  return std::make_shared<Frame>(
-      Frame::Create(timestamp, {}, cv::Mat(0, 32, CV_8UC1), cv::Mat(), scene.camera, scene.pyramid));
-}
-
-// Tracks frames 0..frames-1 of the path in `scene`; fails on the first that is not kOk.
-::testing::AssertionResult TracksThePath(Tracker& tracker, const testing::LandmarkScene& scene, int frames) {
-  for (int i = 0; i < frames; ++i) {
-    const TrackingState state = tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, i)).state;
-    if (state != TrackingState::kOk) {
-      return ::testing::AssertionFailure() << "frame " << i << ": " << ToString(state);
-    }
-  }
-  return ::testing::AssertionSuccess();
-}
+using namespace tracker_testing;
 
 TEST(Tracker, FollowsASmoothPathAccurately) {
   const auto scene = testing::LandmarkScene::Room(6000, 3);
@@ -51,13 +25,13 @@ TEST(Tracker, FollowsASmoothPathAccurately) {
   double max_error = 0;
   int keyframes = 0;
   for (int i = 0; i < 150; ++i) {
-    const SE3d truth = CamFromWorld(i);
+    const SE3d truth = SmoothRoomPath(i);
     const TrackingResult r = tracker.Track(scene.MakeFrame(truth, i / 30.0, 100 + i));
     ASSERT_EQ(r.state, TrackingState::kOk) << "frame " << i;
     ASSERT_TRUE(r.cam_from_world.has_value());
     // The first keyframe defines the world: compare relative to frame 0.
     const SE3d estimate_rel = *r.cam_from_world;
-    const SE3d truth_rel = truth * CamFromWorld(0).Inverse();
+    const SE3d truth_rel = truth * SmoothRoomPath(0).Inverse();
     const double err = CentreDistance(estimate_rel, truth_rel);
     max_error = std::max(max_error, err);
     keyframes += r.new_keyframe;
@@ -79,7 +53,7 @@ TEST(Tracker, MakesNoKeyFrameWhileMappingIsBackedUp) {
   int keyframes_free = 0, keyframes_busy = 0;
   for (int i = 0; i < 150; ++i) {
     backlog = i >= 1 && i < 75 ? TrackerOptions().max_mapping_backlog : 0;  // the first frame initialises
-    const TrackingResult r = tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i));
+    const TrackingResult r = tracker.Track(scene.MakeFrame(SmoothRoomPath(i), i / 30.0, 100 + i));
     ASSERT_EQ(r.state, TrackingState::kOk) << "frame " << i;
     (backlog > 0 ? keyframes_busy : keyframes_free) += r.new_keyframe;
   }
@@ -95,11 +69,11 @@ TEST(Tracker, AHeldKeyFrameIsMadeLaterFromTheKeptKeypoints) {
   const auto scene = testing::LandmarkScene::Room(6000, 3);
   Map map;
   Tracker tracker(TrackerOptions(), &map);
-  ASSERT_TRUE(tracker.Track(scene.MakeFrame(CamFromWorld(0), 0.0, 100)).new_keyframe);  // a first keyframe is never held
+  ASSERT_TRUE(tracker.Track(scene.MakeFrame(SmoothRoomPath(0), 0.0, 100)).new_keyframe);  // a first keyframe is never held
   std::optional<KeyFrameCandidate> held;
   int i = 1;
   for (; i < 150 && !held; ++i) {
-    const TrackingResult r = tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i), {.hold_keyframe = true});
+    const TrackingResult r = tracker.Track(scene.MakeFrame(SmoothRoomPath(i), i / 30.0, 100 + i), {.hold_keyframe = true});
     ASSERT_EQ(r.state, TrackingState::kOk) << "frame " << i;
     EXPECT_FALSE(r.new_keyframe);
     held = r.held_keyframe;
@@ -109,7 +83,7 @@ TEST(Tracker, AHeldKeyFrameIsMadeLaterFromTheKeptKeypoints) {
   const int held_at = i - 1;
   // Two more frames before the masks "arrive".
   for (int k = 0; k < 2; ++k, ++i) {
-    ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i), {.hold_keyframe = true}).state, TrackingState::kOk);
+    ASSERT_EQ(tracker.Track(scene.MakeFrame(SmoothRoomPath(i), i / 30.0, 100 + i), {.hold_keyframe = true}).state, TrackingState::kOk);
   }
   // The right half of the image was a person.
   std::vector<bool> keep(held->frame->size());
@@ -122,11 +96,11 @@ TEST(Tracker, AHeldKeyFrameIsMadeLaterFromTheKeptKeypoints) {
   EXPECT_EQ(kf->frame->size(), kept);
   for (std::size_t k = 0; k < kf->frame->size(); ++k) EXPECT_LT(kf->frame->keypoint(k).raw_uv.x(), 320);
   EXPECT_DOUBLE_EQ(kf->frame->timestamp(), held_at / 30.0);
-  const SE3d truth = CamFromWorld(held_at) * CamFromWorld(0).Inverse();  // keyframe 0 defines the world
+  const SE3d truth = SmoothRoomPath(held_at) * SmoothRoomPath(0).Inverse();  // keyframe 0 defines the world
   EXPECT_LT((kf->cam_from_world * truth.Inverse()).Log().norm(), 1e-2);
   // Tracking goes on from the frames after it.
   for (int k = 0; k < 5; ++k, ++i) {
-    ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i)).state, TrackingState::kOk);
+    ASSERT_EQ(tracker.Track(scene.MakeFrame(SmoothRoomPath(i), i / 30.0, 100 + i)).state, TrackingState::kOk);
   }
   // Keeping nothing, or after a correction of the map, no keyframe.
   EXPECT_FALSE(tracker.InsertHeldKeyFrame(*held, std::vector<bool>(keep.size(), false)).has_value());
@@ -143,7 +117,7 @@ TEST(Tracker, InACrowdUntrackedClosePointsMakeNoKeyFrame) {
   testing::LandmarkScene walked_in = walls;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> side(-0.4, 0.4), depth(1.0, 1.5);
-  const SE3d world_from_cam = CamFromWorld(0).Inverse();
+  const SE3d world_from_cam = SmoothRoomPath(0).Inverse();
   const testing::LandmarkScene other = testing::LandmarkScene::Room(150, 11);  // fresh descriptors
   for (std::size_t k = 0; k < other.descriptors.size(); ++k) {
     walked_in.points.push_back(world_from_cam * Eigen::Vector3d(side(rng), side(rng), depth(rng)));
@@ -157,10 +131,10 @@ TEST(Tracker, InACrowdUntrackedClosePointsMakeNoKeyFrame) {
     options.crowded_removed_share = crowded_removed_share;
     Map map;
     Tracker tracker(options, &map);
-    EXPECT_TRUE(tracker.Track(walls.MakeFrame(CamFromWorld(0), 0.0, 100)).new_keyframe);
+    EXPECT_TRUE(tracker.Track(walls.MakeFrame(SmoothRoomPath(0), 0.0, 100)).new_keyframe);
     for (int i = 1; i < 10; ++i) {
       const TrackingResult r =
-          tracker.Track(walked_in.MakeFrame(CamFromWorld(0), i / 30.0, 100 + i), {.removed_share = removed_share});
+          tracker.Track(walked_in.MakeFrame(SmoothRoomPath(0), i / 30.0, 100 + i), {.removed_share = removed_share});
       EXPECT_EQ(r.state, TrackingState::kOk) << "frame " << i;
     }
     return map.NumKeyFrames();
@@ -174,7 +148,7 @@ TEST(Tracker, InACrowdUntrackedClosePointsMakeNoKeyFrame) {
   EXPECT_THROW(bad.Check(), Error);
   Map map;
   Tracker tracker(TrackerOptions(), &map);
-  EXPECT_THROW(tracker.Track(walls.MakeFrame(CamFromWorld(0), 0.0, 100), {.removed_share = -0.1}), Error);
+  EXPECT_THROW(tracker.Track(walls.MakeFrame(SmoothRoomPath(0), 0.0, 100), {.removed_share = -0.1}), Error);
 }
 
 TEST(Tracker, WaitsForDepthThenInitializes) {
@@ -182,7 +156,7 @@ TEST(Tracker, WaitsForDepthThenInitializes) {
   Map map;
   Tracker tracker(TrackerOptions(), &map);
   // A frame without depth cannot start the map.
-  auto frame = scene.MakeFrame(CamFromWorld(0), 0.0, 1);
+  auto frame = scene.MakeFrame(SmoothRoomPath(0), 0.0, 1);
   const std::shared_ptr<Frame> empty = CoveredFrame(scene, 0.0);
   EXPECT_EQ(tracker.Track(empty).state, TrackingState::kNotInitialized);
   EXPECT_EQ(tracker.Track(frame).state, TrackingState::kOk);
@@ -242,10 +216,10 @@ TEST(Tracker, ReportsLostAndRecoversThroughTheReferenceKeyFrame) {
   const std::shared_ptr<Frame> black = CoveredFrame(scene, 0.4);
   EXPECT_EQ(tracker.Track(black).state, TrackingState::kLost);
   // The camera reappears nearby: tracking resumes and the pose is right.
-  const SE3d truth = CamFromWorld(14);
+  const SE3d truth = SmoothRoomPath(14);
   const TrackingResult r = tracker.Track(scene.MakeFrame(truth, 14 / 30.0, 99));
   ASSERT_EQ(r.state, TrackingState::kOk);
-  const SE3d truth_rel = truth * CamFromWorld(0).Inverse();
+  const SE3d truth_rel = truth * SmoothRoomPath(0).Inverse();
   EXPECT_LT(CentreDistance(*r.cam_from_world, truth_rel), 0.01);
 }
 
@@ -265,11 +239,11 @@ TEST(Tracker, NoMotionModelFromBeforeTheLoss) {
     const std::shared_ptr<Frame> black = CoveredFrame(scene, i / 30.0);
     ASSERT_EQ(tracker.Track(black).state, TrackingState::kLost);
   }
-  ASSERT_EQ(tracker.Track(scene.MakeFrame(CamFromWorld(40), 40 / 30.0, 140)).state, TrackingState::kOk);
-  const TrackingResult next = tracker.Track(scene.MakeFrame(CamFromWorld(41), 41 / 30.0, 141));
+  ASSERT_EQ(tracker.Track(scene.MakeFrame(SmoothRoomPath(40), 40 / 30.0, 140)).state, TrackingState::kOk);
+  const TrackingResult next = tracker.Track(scene.MakeFrame(SmoothRoomPath(41), 41 / 30.0, 141));
   EXPECT_FALSE(next.jump_refused);
   ASSERT_EQ(next.state, TrackingState::kOk);
-  const SE3d truth = CamFromWorld(41) * CamFromWorld(0).Inverse();
+  const SE3d truth = SmoothRoomPath(41) * SmoothRoomPath(0).Inverse();
   EXPECT_LT(CentreDistance(*next.cam_from_world, truth), 0.005);
 }
 
@@ -281,7 +255,7 @@ TEST(Tracker, NoMotionModelFromBeforeTheLoss) {
 // offset beyond the jump guard had the right pose refused as a jump.
 TEST(Tracker, TheStepFromAPoorRecoveryIsNeitherVelocityNorJump) {
   const auto scene = testing::LandmarkScene::Room(6000, 5);
-  const SE3d world_from_first = CamFromWorld(0).Inverse();
+  const SE3d world_from_first = SmoothRoomPath(0).Inverse();
   for (const double offset : {0.15, 0.4}) {
     SCOPED_TRACE(offset);
     Map map;
@@ -292,16 +266,16 @@ TEST(Tracker, TheStepFromAPoorRecoveryIsNeitherVelocityNorJump) {
     ASSERT_TRUE(TracksThePath(tracker, scene, 10));
     const std::shared_ptr<Frame> black = CoveredFrame(scene, 10 / 30.0);
     ASSERT_EQ(tracker.Track(black).state, TrackingState::kLost);
-    const SE3d off = SE3d(SO3d(), Eigen::Vector3d(0.0, 0.0, offset)) * CamFromWorld(11);
+    const SE3d off = SE3d(SO3d(), Eigen::Vector3d(0.0, 0.0, offset)) * SmoothRoomPath(11);
     ASSERT_EQ(tracker.Track(scene.MakeFrame(off, 11 / 30.0, 111)).state, TrackingState::kOk);
     for (int i = 12; i < 16; ++i) {
-      const TrackingResult r = tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i));
+      const TrackingResult r = tracker.Track(scene.MakeFrame(SmoothRoomPath(i), i / 30.0, 100 + i));
       ASSERT_EQ(r.state, TrackingState::kOk) << i;
       EXPECT_FALSE(r.jump_refused) << i;
-      const SE3d truth = CamFromWorld(i) * world_from_first;
+      const SE3d truth = SmoothRoomPath(i) * world_from_first;
       EXPECT_LT(CentreDistance(*r.cam_from_world, truth), 0.005) << i;
       // The next prediction: within a frame's motion (1-2 cm) of the path.
-      const SE3d next = CamFromWorld(i + 1) * world_from_first;
+      const SE3d next = SmoothRoomPath(i + 1) * world_from_first;
       EXPECT_LT(CentreDistance(*tracker.PredictedCamFromWorld(), next), 0.03)
           << i;
     }
@@ -326,7 +300,7 @@ TEST(Tracker, TheNthFrameWithoutAPoseStartsANewMap) {
     int without_pose = 0;
     TrackingResult r;
     for (int i = 10; i < 20 && !r.new_map; ++i) {
-      r = tracker.Track(elsewhere.MakeFrame(CamFromWorld(i), i / 30.0, i));
+      r = tracker.Track(elsewhere.MakeFrame(SmoothRoomPath(i), i / 30.0, i));
       without_pose += !r.cam_from_world.has_value();
     }
     ASSERT_TRUE(r.new_map);
@@ -343,9 +317,9 @@ TEST(Tracker, EstimatePoseIsAccurateAndLeavesTheTrackerAsItWas) {
   Map map_a, map_b;
   Tracker a(TrackerOptions(), &map_a);
   Tracker b(TrackerOptions(), &map_b);
-  EXPECT_FALSE(a.EstimatePose(*scene.MakeFrame(CamFromWorld(0), 0.0, 1)).has_value());  // no map yet
+  EXPECT_FALSE(a.EstimatePose(*scene.MakeFrame(SmoothRoomPath(0), 0.0, 1)).has_value());  // no map yet
   for (int i = 0; i < 40; ++i) {
-    const auto frame = scene.MakeFrame(CamFromWorld(i), i / 30.0, 200 + i);
+    const auto frame = scene.MakeFrame(SmoothRoomPath(i), i / 30.0, 200 + i);
     std::optional<SE3d> estimate;
     if (i > 0) estimate = a.EstimatePose(*frame);  // only `a` is asked first
     const TrackingResult ra = a.Track(frame);
@@ -373,7 +347,7 @@ TEST(Tracker, EstimatePoseFallsBackToTheMotionGuess) {
   const std::shared_ptr<Frame> black = CoveredFrame(scene, 0.2);
   const std::optional<SE3d> guess = tracker.EstimatePose(*black);
   ASSERT_TRUE(guess.has_value());
-  const SE3d truth_rel = CamFromWorld(5) * CamFromWorld(0).Inverse();
+  const SE3d truth_rel = SmoothRoomPath(5) * SmoothRoomPath(0).Inverse();
   EXPECT_LT(CentreDistance(*guess, truth_rel), 0.005);
   EXPECT_EQ(tracker.state(), TrackingState::kOk);
   // Coasting through the black frames keeps an estimate; once lost there is none.
@@ -383,290 +357,6 @@ TEST(Tracker, EstimatePoseFallsBackToTheMotionGuess) {
   }
   EXPECT_EQ(tracker.Track(black).state, TrackingState::kLost);
   EXPECT_FALSE(tracker.EstimatePose(*black).has_value());
-}
-
-// People covering the view for a few frames: the frames coast on the motion
-// model (with a pose close to the truth, marked as such, no keyframe), and
-// tracking takes over again when the view clears, without relocalization.
-TEST(Tracker, CoastsThroughAShortOcclusion) {
-  const auto scene = testing::LandmarkScene::Room(6000, 8);
-  Map map;
-  Tracker tracker(TrackerOptions(), &map);
-  ASSERT_TRUE(TracksThePath(tracker, scene, 10));
-  const std::size_t keyframes = map.NumKeyFrames();
-  const SE3d world_from_first = CamFromWorld(0).Inverse();
-  for (int i = 10; i < 16; ++i) {
-    const std::shared_ptr<Frame> covered = CoveredFrame(scene, i / 30.0);
-    const TrackingResult r = tracker.Track(covered);
-    ASSERT_EQ(r.state, TrackingState::kCoasting) << "frame " << i;
-    ASSERT_TRUE(r.cam_from_world.has_value());
-    EXPECT_FALSE(r.new_keyframe);
-    // The constant-velocity extrapolation of a smooth path: within 1 cm.
-    const SE3d truth = CamFromWorld(i) * world_from_first;
-    EXPECT_LT(CentreDistance(*r.cam_from_world, truth), 0.01) << i;
-  }
-  EXPECT_EQ(map.NumKeyFrames(), keyframes);
-  const TrackingResult back = tracker.Track(scene.MakeFrame(CamFromWorld(16), 16 / 30.0, 99));
-  ASSERT_EQ(back.state, TrackingState::kOk);
-  EXPECT_FALSE(back.relocalized);
-  const SE3d truth = CamFromWorld(16) * world_from_first;
-  EXPECT_LT(CentreDistance(*back.cam_from_world, truth), 0.005);
-}
-
-// The frame before an occlusion tracked 8 cm off the smooth path (below the
-// jump guard: a pose pulled by people stepping in front): coasting moves on
-// the median of the recent motions, not on that last step, so the covered
-// frames stay about 8 cm off instead of drifting 8 cm further each frame.
-TEST(Tracker, CoastsOnTheRecentMotionNotOnTheLastStep) {
-  const auto scene = testing::LandmarkScene::Room(6000, 10);
-  const SE3d world_from_first = CamFromWorld(0).Inverse();
-  for (const int frames : {10, 1}) {
-    SCOPED_TRACE(frames);
-    Map map;
-    TrackerOptions options;
-    options.coasting_velocity_frames = frames;
-    Tracker tracker(options, &map);
-    ASSERT_TRUE(TracksThePath(tracker, scene, 10));
-    const SE3d pulled = SE3d(SO3d(), Eigen::Vector3d(0.08, 0.0, 0.0)) * CamFromWorld(10);
-    const TrackingResult r10 = tracker.Track(scene.MakeFrame(pulled, 10 / 30.0, 60));
-    ASSERT_EQ(r10.state, TrackingState::kOk);
-    ASSERT_FALSE(r10.jump_refused);
-    double error = 0;
-    for (int i = 11; i < 16; ++i) {
-      const std::shared_ptr<Frame> covered = CoveredFrame(scene, i / 30.0);
-      const TrackingResult r = tracker.Track(covered);
-      ASSERT_EQ(r.state, TrackingState::kCoasting) << "frame " << i;
-      const SE3d truth = CamFromWorld(i) * world_from_first;
-      error = CentreDistance(*r.cam_from_world, truth);
-    }
-    if (frames == 10) {
-      EXPECT_LT(error, 0.1);  // the 8 cm it was pulled, and no more
-    } else {
-      EXPECT_GT(error, 0.3);  // the last step repeated 5 times
-    }
-  }
-}
-
-// The camera stopped while it was covered: the frame that tracks again
-// corrects the coasted pose by several frames' motion at once. That
-// correction is not the camera's velocity; the next frame's prediction moves
-// on with the motion from before (here ~1 cm a frame), not with the jump.
-TEST(Tracker, TheCorrectionAfterCoastingIsNotTakenAsTheVelocity) {
-  const auto scene = testing::LandmarkScene::Room(6000, 12);
-  Map map;
-  Tracker tracker(TrackerOptions(), &map);
-  ASSERT_TRUE(TracksThePath(tracker, scene, 10));
-  const SE3d velocity = CamFromWorld(9) * CamFromWorld(8).Inverse();
-  for (int i = 10; i < 16; ++i) {
-    const std::shared_ptr<Frame> covered = CoveredFrame(scene, i / 30.0);
-    ASSERT_EQ(tracker.Track(covered).state, TrackingState::kCoasting) << "frame " << i;
-  }
-  // Seen again where it stopped, at frame 9's pose: 6 frames' motion back.
-  const TrackingResult back = tracker.Track(scene.MakeFrame(CamFromWorld(9), 16 / 30.0, 70));
-  ASSERT_EQ(back.state, TrackingState::kOk);
-  const SE3d world_from_first = CamFromWorld(0).Inverse();
-  const SE3d stopped = CamFromWorld(9) * world_from_first;
-  ASSERT_LT(CentreDistance(*back.cam_from_world, stopped), 0.005);
-  const SE3d step = velocity * *back.cam_from_world;  // what the motion before says
-  const std::optional<SE3d> predicted = tracker.PredictedCamFromWorld();
-  ASSERT_TRUE(predicted.has_value());
-  EXPECT_LT(CentreDistance(*predicted, step), 0.003);
-  EXPECT_GT(velocity.translation().norm(), 0.005);  // the test moves: a jump would be 6 times that
-}
-
-// Three frames covered, then a frame whose few matches (a walker's unmasked
-// clothes in a crowd; here 40-odd of the room's points seen from 0.3 m
-// away) give a pose far from where the coasting can have drifted: it is
-// refused and the frame coasts on. The same view with a relocalization's
-// support (every point) is taken.
-TEST(Tracker, AFarPoseAfterCoastingNeedsARelocalizationsSupport) {
-  const auto scene = testing::LandmarkScene::Room(6000, 14);
-  testing::LandmarkScene few = scene;
-  few.points.resize(200);
-  few.descriptors.resize(200);
-  const SE3d world_from_first = CamFromWorld(0).Inverse();
-  for (const bool supported : {false, true}) {
-    SCOPED_TRACE(supported);
-    Map map;
-    Tracker tracker(TrackerOptions(), &map);
-    ASSERT_TRUE(TracksThePath(tracker, scene, 10));
-    for (int i = 10; i < 13; ++i) {
-      const std::shared_ptr<Frame> covered = CoveredFrame(scene, i / 30.0);
-      ASSERT_EQ(tracker.Track(covered).state, TrackingState::kCoasting) << i;
-    }
-    const SE3d off = SE3d(SO3d(), Eigen::Vector3d(0.3, 0.0, 0.0)) * CamFromWorld(13);
-    const TrackingResult r = tracker.Track((supported ? scene : few).MakeFrame(off, 13 / 30.0, 113));
-    const SE3d truth = CamFromWorld(13) * world_from_first;
-    const double error = CentreDistance(*r.cam_from_world, truth);
-    if (supported) {
-      ASSERT_EQ(r.state, TrackingState::kOk);
-      EXPECT_GT(r.inliers, TrackerOptions().relocalization.min_inliers);
-      EXPECT_GT(error, 0.25);  // taken: the view says so
-    } else {
-      EXPECT_GE(r.inliers, TrackerOptions().min_local_map_inliers);  // enough to track, not to jump
-      EXPECT_LT(r.inliers, TrackerOptions().relocalization.min_inliers);
-      EXPECT_TRUE(r.jump_refused);
-      ASSERT_EQ(r.state, TrackingState::kCoasting);
-      EXPECT_LT(error, 0.02);  // the coasted prediction
-      const TrackingResult back = tracker.Track(scene.MakeFrame(CamFromWorld(14), 14 / 30.0, 114));
-      ASSERT_EQ(back.state, TrackingState::kOk);
-      const SE3d truth14 = CamFromWorld(14) * world_from_first;
-      EXPECT_LT(CentreDistance(*back.cam_from_world, truth14), 0.005);
-    }
-  }
-}
-
-// The room's 800 points and, in front of them, 4000 on people (random
-// descriptors, 1.5-2.5 m away): the people hold most of the keypoints.
-constexpr std::size_t kPeoplePoints = 4000;
-testing::LandmarkScene RoomWithPeople(unsigned seed) {
-  testing::LandmarkScene scene = testing::LandmarkScene::Room(800, 13);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> x(-1.0, 1.0), y(-0.8, 0.8), z(1.5, 2.5);
-  std::uniform_int_distribution<int> byte(0, 255);
-  for (std::size_t i = 0; i < kPeoplePoints; ++i) {
-    scene.points.emplace_back(x(rng), y(rng), z(rng));
-    std::array<uint8_t, 32> d;
-    for (uint8_t& b : d) b = static_cast<uint8_t>(byte(rng));
-    scene.descriptors.push_back(d);
-  }
-  return scene;
-}
-
-// `scene` (RoomWithPeople) with the people `dx` metres further along x.
-testing::LandmarkScene PeopleStepped(testing::LandmarkScene scene, double dx) {
-  for (std::size_t i = scene.points.size() - kPeoplePoints; i < scene.points.size(); ++i) scene.points[i].x() += dx;
-  return scene;
-}
-
-// People in front of the room hold most of the keypoints and step 5 cm
-// sideways at once (their points in the map are where they stood): the
-// pose solved on every match follows them; with the gate the matches near
-// their keypoints at the prediction (the room's) give the pose.
-TEST(Tracker, AGatedPoseStaysOnWhatThePredictionExplains) {
-  const testing::LandmarkScene still = RoomWithPeople(5);
-  const testing::LandmarkScene stepped = PeopleStepped(still, 0.05);
-  const SE3d world_from_first = CamFromWorld(0).Inverse();
-  for (const double gate : {0.0, 0.03}) {
-    SCOPED_TRACE(gate);
-    Map map;
-    TrackerOptions options;
-    options.gate_departure_m = gate;
-    options.gate_departure_deg = gate > 0 ? 2.0 : 0.0;
-    Tracker tracker(options, &map);
-    ASSERT_TRUE(TracksThePath(tracker, still, 10));
-    double error = 0;
-    bool gated = false;
-    for (int i = 10; i < 13; ++i) {
-      const TrackingResult r = tracker.Track(stepped.MakeFrame(CamFromWorld(i), i / 30.0, 80 + i));
-      ASSERT_EQ(r.state, TrackingState::kOk) << i;
-      gated |= r.gated;
-      const SE3d truth = CamFromWorld(i) * world_from_first;
-      error = std::max(error, CentreDistance(*r.cam_from_world, truth));
-    }
-    if (gate > 0) {
-      EXPECT_TRUE(gated);
-      EXPECT_LT(error, 0.005);
-    } else {
-      EXPECT_FALSE(gated);
-      EXPECT_GT(error, 0.03);  // pulled towards the people's 5 cm
-    }
-  }
-}
-
-// A gated pose with too few inliers near the prediction makes no keyframe,
-// even when one is due (here every frame: max_frames_between_keyframes 1):
-// its matches disagreed about it, and a keyframe would add points that
-// agree with it. The semi-real kitchens made five keyframes in five gated
-// frames of a crowd and slid 0.5 m. One that keeps enough inliers does, or
-// the map falls behind a camera moving through a crowd.
-TEST(Tracker, AGatedFrameMakesAKeyFrameOnlyWithEnoughInliers) {
-  const testing::LandmarkScene still = RoomWithPeople(5);
-  const testing::LandmarkScene stepped = PeopleStepped(still, 0.05);
-  for (const int min_inliers : {0, 30, 100000}) {
-    SCOPED_TRACE(min_inliers);
-    Map map;
-    TrackerOptions options;
-    options.max_frames_between_keyframes = 1;
-    options.gated_keyframe_min_inliers = min_inliers;
-    Tracker tracker(options, &map);
-    ASSERT_TRUE(TracksThePath(tracker, still, 10));
-    int gated = 0;
-    for (int i = 10; i < 13; ++i) {
-      const TrackingResult r = tracker.Track(stepped.MakeFrame(CamFromWorld(i), i / 30.0, 80 + i));
-      ASSERT_EQ(r.state, TrackingState::kOk) << i;
-      gated += r.gated;
-      // Due every frame: made unless gated with fewer inliers than asked for.
-      const bool allowed = !r.gated || (min_inliers > 0 && r.inliers >= min_inliers);
-      EXPECT_EQ(r.new_keyframe, allowed) << i << ": " << r.inliers << " inliers";
-      if (r.gated && min_inliers == 30) EXPECT_GE(r.inliers, 30) << i;  // the gate keeps at least that many
-    }
-    EXPECT_GE(gated, 1);
-  }
-}
-
-// People step 2.5 cm sideways for one frame and back: that frame's pose is
-// pulled by less than the gate's 3 cm, so it is taken, and its pull enters
-// the last motion. On the last motion the next prediction carries the pull
-// twice over, the right pose departs from it and the gate holds the camera
-// near the wrong prediction (for good if a gated frame becomes a keyframe,
-// for two frames if none does); on the median of the recent motions the
-// prediction carries the pulled position only, and the next frame is back,
-// gated keyframes allowed (the default).
-TEST(Tracker, TheMedianMotionGateLetsGoOfAPullThatHasEnded) {
-  const testing::LandmarkScene still = RoomWithPeople(7);
-  const testing::LandmarkScene stepped = PeopleStepped(still, 0.025);
-  const SE3d world_from_first = CamFromWorld(0).Inverse();
-  for (const bool median : {false, true}) {
-    SCOPED_TRACE(median);
-    Map map;
-    TrackerOptions options;
-    options.gate_on_median_motion = median;
-    // On the last motion a gated frame that became a keyframe would keep
-    // the pull for good (the prediction it was solved near carried it).
-    if (!median) options.gated_keyframe_min_inliers = 0;
-    Tracker tracker(options, &map);
-    ASSERT_TRUE(TracksThePath(tracker, still, 10));
-    std::vector<double> error;
-    for (int i = 10; i < 14; ++i) {
-      const TrackingResult r = tracker.Track((i == 10 ? stepped : still).MakeFrame(CamFromWorld(i), i / 30.0, 80 + i));
-      ASSERT_EQ(r.state, TrackingState::kOk) << i;
-      EXPECT_FALSE(r.new_keyframe && r.gated) << i;
-      const SE3d truth = CamFromWorld(i) * world_from_first;
-      error.push_back(CentreDistance(*r.cam_from_world, truth));
-    }
-    EXPECT_GT(error[0], 0.015) << "the step pulls the pose";
-    if (median) {
-      EXPECT_LT(error[1], 0.003);
-    } else {
-      EXPECT_GT(error[1], 0.01);  // held near the prediction that carried the pull
-    }
-    EXPECT_LT(error[3], 0.003);
-  }
-}
-
-// A frame whose map matches give a pose the camera cannot have reached since
-// the last frame (here: a view from 0.6 m away, as when people walking
-// together are taken for the scene) is refused: it coasts on the motion
-// model, and tracking goes on from the next consistent frame.
-TEST(Tracker, RefusesAPoseTooFarFromTheMotionModel) {
-  const auto scene = testing::LandmarkScene::Room(6000, 9);
-  Map map;
-  Tracker tracker(TrackerOptions(), &map);
-  ASSERT_TRUE(TracksThePath(tracker, scene, 10));
-  const SE3d world_from_first = CamFromWorld(0).Inverse();
-  const SE3d shifted = SE3d(SO3d(), Eigen::Vector3d(0.6, 0.0, 0.0)) * CamFromWorld(10);
-  const TrackingResult jump = tracker.Track(scene.MakeFrame(shifted, 10 / 30.0, 50));
-  EXPECT_TRUE(jump.jump_refused);
-  ASSERT_EQ(jump.state, TrackingState::kCoasting);
-  EXPECT_FALSE(jump.new_keyframe);
-  const SE3d truth10 = CamFromWorld(10) * world_from_first;
-  EXPECT_LT(CentreDistance(*jump.cam_from_world, truth10), 0.01);
-  const TrackingResult back = tracker.Track(scene.MakeFrame(CamFromWorld(11), 11 / 30.0, 51));
-  ASSERT_EQ(back.state, TrackingState::kOk);
-  EXPECT_FALSE(back.jump_refused);
-  const SE3d truth11 = CamFromWorld(11) * world_from_first;
-  EXPECT_LT(CentreDistance(*back.cam_from_world, truth11), 0.005);
 }
 
 }  // namespace

@@ -14,15 +14,8 @@
 namespace {
 
 using namespace dlslam;
-using Vector6d = Eigen::Matrix<double, 6, 1>;
+using testing::SmoothRoomPath;
 
-SE3d CamFromWorld(int i) {
-  const double t = i / 30.0;
-  Vector6d xi;
-  xi << 0.4 * std::sin(0.8 * t), 0.1 * std::sin(1.3 * t), 0.3 * std::sin(0.5 * t), 0.05 * std::sin(0.7 * t),
-      0.25 * std::sin(0.6 * t), 0.03 * std::sin(t);
-  return SE3d::Exp(xi).Inverse();
-}
 
 struct Mapped {
   testing::LandmarkScene scene = testing::LandmarkScene::Room(20000, 3);
@@ -37,8 +30,8 @@ Mapped& GetMapped() {
     TrackerOptions options;
     options.max_frames_between_keyframes = 10;
     m->tracker = std::make_unique<Tracker>(options, &m->map);
-    for (int i = 0; i < m->frames; ++i) m->tracker->Track(m->scene.MakeFrame(CamFromWorld(i), i / 30.0, 100 + i));
-    const std::shared_ptr<Frame> last = m->scene.MakeFrame(CamFromWorld(m->frames), m->frames / 30.0, 99);
+    for (int i = 0; i < m->frames; ++i) m->tracker->Track(m->scene.MakeFrame(SmoothRoomPath(i), i / 30.0, 100 + i));
+    const std::shared_ptr<Frame> last = m->scene.MakeFrame(SmoothRoomPath(m->frames), m->frames / 30.0, 99);
     const TrackingResult r = m->tracker->Track(last);
     DLSLAM_CHECK(r.state == TrackingState::kOk, "the benchmark's map did not track");
     return m;
