@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "dlslam/image/disc_dilation.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam::dynamic {
@@ -174,11 +175,7 @@ cv::Mat FuseDynamicMasks(const SemanticMasks& semantic, const GeometryResult& ge
   }
   if (options.dilation_px > 0) {
     const int r = static_cast<int>(std::lround(options.dilation_px));
-    if (r > 0) {
-      const cv::Mat kernel =
-          cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1));
-      cv::dilate(fused, fused, kernel);
-    }
+    if (r > 0) image::DilateDisc(fused, r, fused);
   }
   return fused;
 }

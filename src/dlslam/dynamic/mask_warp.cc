@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "dlslam/dynamic/cell_grid.h"
+#include "dlslam/image/disc_dilation.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam::dynamic {
@@ -97,8 +98,7 @@ cv::Mat MaskWarper::Warp(const cv::Mat& mask_s, const cv::Mat& depth_s, const SE
     cv::morphologyEx(carried, carried, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k)));
   }
   if (const int grow = InCells(grow_px, cell); grow > 0) {
-    const int k = 2 * grow + 1;
-    cv::dilate(carried, carried, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)));
+    image::DilateDisc(carried, grow, carried);
   }
   if (cell == 1) return carried;
   cv::Mat full;

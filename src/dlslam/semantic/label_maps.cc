@@ -2,6 +2,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "dlslam/image/disc_dilation.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam::semantic {
@@ -60,11 +61,7 @@ cv::Mat DilateMask(const cv::Mat& mask, int margin_px) {
     cv::distanceTransform(mask == 0, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
     return distance <= static_cast<float>(margin_px);
   }
-  const cv::Mat disc =
-      cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * margin_px + 1, 2 * margin_px + 1));
-  cv::Mat grown;
-  cv::dilate(mask, grown, disc);
-  return grown;
+  return image::DilateDisc(mask, margin_px);
 }
 
 SegmentationResult ResultFromLabels(const cv::Mat& network_labels, cv::Size frame_size,
