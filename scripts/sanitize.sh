@@ -23,10 +23,11 @@ export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$supp/
 if [[ ${1:-} == --ci ]]; then
   # The unit tests of the modules that read user input (io, eval, place,
   # data, util; semantic for model files: corrupt ONNX, the input-size
-  # reader) and the fuzz suite over every reader; not the SLAM end to end,
-  # which would not fit CI's 2 cores. -O1 without debug info compiles fastest.
+  # reader; image for the masks' bit packing) and the fuzz suite over every
+  # reader; not the SLAM end to end, which would not fit CI's 2 cores. -O1
+  # without debug info compiles fastest.
   dir=build-asan-ci
-  targets=(util_test data_test io_test eval_test place_test semantic_test input_fuzz_test)
+  targets=(util_test data_test io_test eval_test place_test semantic_test image_test input_fuzz_test)
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 \
     -DDLSLAM_SANITIZE="$kind" -DDLSLAM_BUILD_BENCHMARKS=OFF
   cmake --build "$dir" --parallel "$(nproc)" --target "${targets[@]}"
