@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "dlslam/util/check.h"
 
@@ -107,11 +108,21 @@ void Frame::BuildGrid() {
   }
   cell_w_inv_ = kGridCols / (max_u_ - min_u_);
   cell_h_inv_ = kGridRows / (max_v_ - min_v_);
-  grid_.assign(kGridCols * kGridRows, {});
+  // A counting sort by cell keeps the keypoints' order within a cell.
+  std::vector<int> cell_of(keypoints_.size());
+  cell_start_.assign(kGridCols * kGridRows + 1, 0);
   for (std::size_t i = 0; i < keypoints_.size(); ++i) {
     const int cx = std::clamp(static_cast<int>((keypoints_[i].uv.x() - min_u_) * cell_w_inv_), 0, kGridCols - 1);
     const int cy = std::clamp(static_cast<int>((keypoints_[i].uv.y() - min_v_) * cell_h_inv_), 0, kGridRows - 1);
-    grid_[cy * kGridCols + cx].push_back(static_cast<int>(i));
+    cell_of[i] = cy * kGridCols + cx;
+    ++cell_start_[static_cast<std::size_t>(cell_of[i]) + 1];
+  }
+  for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+  std::vector<int> next(cell_start_.begin(), cell_start_.end() - 1);
+  grid_.resize(keypoints_.size());
+  for (std::size_t i = 0; i < keypoints_.size(); ++i) {
+    grid_[static_cast<std::size_t>(next[static_cast<std::size_t>(cell_of[i])]++)] = {
+        keypoints_[i].uv, keypoints_[i].octave, static_cast<int>(i)};
   }
 }
 
@@ -155,22 +166,31 @@ Frame Frame::WithoutMasked(const cv::Mat& mask) const {
 std::vector<int> Frame::FeaturesInArea(double u, double v, double radius, int min_octave,
                                        int max_octave) const {
   std::vector<int> out;
+  FeaturesInArea(u, v, radius, min_octave, max_octave, out);
+  return out;
+}
+
+void Frame::FeaturesInArea(double u, double v, double radius, int min_octave, int max_octave,
+                           std::vector<int>& out) const {
+  out.clear();
+  if (grid_.empty()) return;
   const int x0 = std::max(0, static_cast<int>(std::floor((u - radius - min_u_) * cell_w_inv_)));
   const int x1 = std::min(kGridCols - 1, static_cast<int>(std::floor((u + radius - min_u_) * cell_w_inv_)));
   const int y0 = std::max(0, static_cast<int>(std::floor((v - radius - min_v_) * cell_h_inv_)));
   const int y1 = std::min(kGridRows - 1, static_cast<int>(std::floor((v + radius - min_v_) * cell_h_inv_)));
+  if (x0 > x1) return;
   const double r2 = radius * radius;
+  const Eigen::Vector2d centre(u, v);
+  const int lo = min_octave >= 0 ? min_octave : std::numeric_limits<int>::min();
+  const int hi = max_octave >= 0 ? max_octave : std::numeric_limits<int>::max();
   for (int cy = y0; cy <= y1; ++cy) {
-    for (int cx = x0; cx <= x1; ++cx) {
-      for (int i : grid_[cy * kGridCols + cx]) {
-        const FrameKeypoint& k = keypoints_[i];
-        if (min_octave >= 0 && k.octave < min_octave) continue;
-        if (max_octave >= 0 && k.octave > max_octave) continue;
-        if ((k.uv - Eigen::Vector2d(u, v)).squaredNorm() <= r2) out.push_back(i);
-      }
+    const int end = cell_start_[static_cast<std::size_t>(cy * kGridCols + x1 + 1)];
+    for (int e = cell_start_[static_cast<std::size_t>(cy * kGridCols + x0)]; e < end; ++e) {
+      const GridEntry& k = grid_[static_cast<std::size_t>(e)];
+      if (k.octave < lo || k.octave > hi) continue;
+      if ((k.uv - centre).squaredNorm() <= r2) out.push_back(k.index);
     }
   }
-  return out;
 }
 
 std::optional<Eigen::Vector3d> Frame::Unproject(std::size_t i) const {

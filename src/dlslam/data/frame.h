@@ -69,9 +69,13 @@ class Frame {
   Frame WithoutMasked(const cv::Mat& mask) const;
 
   // Indices of keypoints within `radius` px of (u, v) (undistorted), with
-  // octave in [min_octave, max_octave] (negative = no bound).
+  // octave in [min_octave, max_octave] (negative = no bound), grid cell by
+  // cell (row-major), ascending within a cell. The second form fills `out`
+  // (cleared first), so a matcher's loop reuses one buffer.
   std::vector<int> FeaturesInArea(double u, double v, double radius, int min_octave = -1,
                                   int max_octave = -1) const;
+  void FeaturesInArea(double u, double v, double radius, int min_octave, int max_octave,
+                      std::vector<int>& out) const;
 
   // Point in the camera frame of keypoint i, if it has depth.
   std::optional<Eigen::Vector3d> Unproject(std::size_t i) const;
@@ -92,7 +96,16 @@ class Frame {
   // Undistorted image bounds covered by the grid.
   double min_u_ = 0, max_u_ = 0, min_v_ = 0, max_v_ = 0;
   double cell_w_inv_ = 0, cell_h_inv_ = 0;
-  std::vector<std::vector<int>> grid_;  // kGridRows * kGridCols cells
+  // The grid, cell by cell (row-major): the keypoints of cell c are
+  // grid_[cell_start_[c] .. cell_start_[c + 1]), so a row of cells is one
+  // contiguous range, with the position and octave beside the index.
+  struct GridEntry {
+    Eigen::Vector2d uv;
+    int octave = 0;
+    int index = 0;
+  };
+  std::vector<int> cell_start_;  // kGridRows * kGridCols + 1
+  std::vector<GridEntry> grid_;
   std::optional<SE3d> cam_from_world_;
 };
 

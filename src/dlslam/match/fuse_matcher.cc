@@ -27,6 +27,7 @@ std::vector<FuseCandidate> SearchForFusion(const Frame& frame, const SE3d& cam_f
   const ScalePyramid& pyr = frame.pyramid();
   const PointVisibility visibility(cam, cam_from_world, options.max_view_angle_deg);
   std::vector<FuseCandidate> out;
+  std::vector<int> candidates;
   for (const MapPointView& p : points) {
     if (seen.count(p.id)) continue;
     const std::optional<VisibleProjection> visible = visibility.Project(p);
@@ -37,8 +38,9 @@ std::vector<FuseCandidate> SearchForFusion(const Frame& frame, const SE3d& cam_f
     const int octave = PredictOctave(dist, p.max_distance, pyr);
     const double right_u = uv.x() - cam.bf / pc.z();
     int best = options.max_distance + 1, best_idx = -1;
-    for (int idx : frame.FeaturesInArea(uv.x(), uv.y(), options.radius * pyr.Scale(octave),
-                                        std::max(octave - 1, 0), octave)) {
+    frame.FeaturesInArea(uv.x(), uv.y(), options.radius * pyr.Scale(octave), std::max(octave - 1, 0), octave,
+                         candidates);
+    for (int idx : candidates) {
       const FrameKeypoint& k = frame.keypoint(idx);
       const double info = pyr.InverseSigma2(k.octave);
       double chi2 = (k.uv - uv).squaredNorm();

@@ -30,6 +30,7 @@ ProjectionMatchStats SearchByProjection(const Frame& frame, const SE3d& cam_from
   // Best candidate per keypoint, so two points never take the same keypoint.
   std::vector<int> best_distance(frame.size(), 256);
   ProjectionMatchStats stats;
+  std::vector<int> candidates;
   for (const MapPointView& p : points) {
     const std::optional<VisibleProjection> seen = visibility.Project(p);
     if (!seen) continue;
@@ -44,7 +45,8 @@ ProjectionMatchStats SearchByProjection(const Frame& frame, const SE3d& cam_from
     const int hi = options.use_predicted_octave ? octave + 1 : -1;
     const double right_u = uv.x() - cam.bf / pc.z();
     int best = 256, second = 256, best_idx = -1, best_octave = -1, second_octave = -1;
-    for (int idx : frame.FeaturesInArea(uv.x(), uv.y(), radius, std::max(lo, 0), hi)) {
+    frame.FeaturesInArea(uv.x(), uv.y(), radius, std::max(lo, 0), hi, candidates);
+    for (int idx : candidates) {
       if ((*matches)[idx] != kNoId && best_distance[idx] == 256) continue;  // taken before this search
       const FrameKeypoint& k = frame.keypoint(idx);
       if (k.right_u >= 0 && std::abs(right_u - k.right_u) > radius) continue;

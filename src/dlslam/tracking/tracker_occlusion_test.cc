@@ -232,7 +232,9 @@ TEST(Tracker, AGatedFrameMakesAKeyFrameOnlyWithEnoughInliers) {
       // Due every frame: made unless gated with fewer inliers than asked for.
       const bool allowed = !r.gated || (min_inliers > 0 && r.inliers >= min_inliers);
       EXPECT_EQ(r.new_keyframe, allowed) << i << ": " << r.inliers << " inliers";
-      if (r.gated && min_inliers == 30) EXPECT_GE(r.inliers, 30) << i;  // the gate keeps at least that many
+      if (r.gated && min_inliers == 30) {
+        EXPECT_GE(r.inliers, 30) << i;  // the gate keeps at least that many
+      }
     }
     EXPECT_GE(gated, 1);
   }

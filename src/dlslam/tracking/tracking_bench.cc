@@ -1,12 +1,15 @@
 // The tracker's local map (Map::GetLocalMap: the keyframes that see one
 // frame's matches, their neighbours, and all their points, copied under the
-// map's lock) on a map made without images: a landmark room
-// (tests/support/landmark_scene.h) tracked over 120 frames of a smooth path.
+// map's lock) and the search of its points in a frame (SearchByProjection,
+// the grid lookups of Frame::FeaturesInArea at its core), on a map made
+// without images: a landmark room (tests/support/landmark_scene.h) tracked
+// over 120 frames of a smooth path.
 
 #include <benchmark/benchmark.h>
 
 #include <memory>
 
+#include "dlslam/match/projection_matcher.h"
 #include "dlslam/tracking/tracker.h"
 #include "dlslam/util/check.h"
 #include "tests/support/landmark_scene.h"
@@ -57,5 +60,28 @@ void BM_GetLocalMap(benchmark::State& state) {
   state.counters["points_returned"] = static_cast<double>(points);
 }
 BENCHMARK(BM_GetLocalMap)->Unit(benchmark::kMicrosecond);
+
+void BM_SearchLocalMapByProjection(benchmark::State& state) {
+  Mapped& m = GetMapped();
+  const SE3d pose = SmoothRoomPath(m.frames + 1);
+  const std::shared_ptr<Frame> frame = m.scene.MakeFrame(pose, (m.frames + 1) / 30.0, 98);
+  std::vector<MapPointId> seen;
+  for (const MapPointView& p : m.map.GetLocalMap(m.map.GetKeyFrame(m.tracker->reference_keyframe())->points, 3).points) {
+    seen.push_back(p.id);
+    if (seen.size() >= 400) break;
+  }
+  const LocalMapSnapshot local = m.map.GetLocalMap(seen, 40);
+  std::vector<MapPointId> matches;
+  int matched = 0;
+  for (auto _ : state) {
+    matches.clear();
+    matched = SearchByProjection(*frame, pose, local.points, ProjectionMatchOptions{}, &matches).matched;
+    benchmark::DoNotOptimize(matches.data());
+  }
+  state.counters["points"] = static_cast<double>(local.points.size());
+  state.counters["keypoints"] = static_cast<double>(frame->size());
+  state.counters["matched"] = matched;
+}
+BENCHMARK(BM_SearchLocalMapByProjection)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
