@@ -9,6 +9,7 @@
 #include "dlslam/dynamic/geometry_detector.h"
 #include "dlslam/dynamic/mask_fusion.h"
 #include "dlslam/dynamic/mask_warp.h"
+#include "dlslam/dynamic/region_growing.h"
 #include "dlslam/dynamic/tools/keyframe_eval.h"
 
 namespace {
@@ -158,6 +159,29 @@ void BM_DetectWithFreeSpace(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_DetectWithFreeSpace)->Unit(benchmark::kMillisecond);
+
+// Region growing alone over the frame's depth, seeded as the multi-view test
+// leaves it: dynamic points on the people and chairs, static points on the
+// rest (a point every 16 px).
+void BM_GrowDynamicRegions(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  std::vector<cv::Point2f> dynamic_seeds, static_seeds;
+  for (int v = 8; v < f.depth.rows; v += 16) {
+    for (int u = 8; u < f.depth.cols; u += 16) {
+      (f.objects.at<std::uint8_t>(v, u) != 0 ? dynamic_seeds : static_seeds).emplace_back(u, v);
+    }
+  }
+  const RegionGrowingOptions options;
+  cv::Mat grown;
+  for (auto _ : state) {
+    grown = GrowDynamicRegions(f.depth, f.camera, dynamic_seeds, static_seeds, options);
+    benchmark::DoNotOptimize(grown.data);
+  }
+  state.counters["dynamic_seeds"] = static_cast<double>(dynamic_seeds.size());
+  state.counters["static_seeds"] = static_cast<double>(static_seeds.size());
+  state.counters["grown_share"] = cv::countNonZero(grown) / static_cast<double>(grown.total());
+}
+BENCHMARK(BM_GrowDynamicRegions)->Unit(benchmark::kMicrosecond);
 
 // The dynamic stage's two fusions of a frame (mode full, policy union,
 // dilation 5 px): the network's mask alone (DynamicStage::TakePrior), then

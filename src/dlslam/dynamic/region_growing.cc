@@ -43,6 +43,7 @@ namespace {
 constexpr std::uint8_t kFree = 0;
 constexpr std::uint8_t kStaticOwner = 1;
 constexpr std::uint8_t kDynamicOwner = 255;
+constexpr std::uint8_t kBlocked = 2;  // no valid depth, or the grid's border
 
 struct Seed {
   float x, y, z;  // 3-D point in the camera frame [m]
@@ -61,25 +62,38 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
                "GrowDynamicRegions: depth is {}x{}, the camera {}x{}", depth.cols, depth.rows,
                camera.width, camera.height);
   if (dynamic_seeds.empty()) return cv::Mat::zeros(depth.size(), CV_8UC1);
-  // The grid: every step-th pixel of the depth image.
+  // The grid: every step-th pixel of the depth image, with a border of one
+  // blocked cell on every side so that a neighbour needs no bounds check.
   const int step = options.pixel_step;
   const int cols = (depth.cols + step - 1) / step;
   const int rows = (depth.rows + step - 1) / step;
-  std::vector<float> z_of(static_cast<std::size_t>(cols) * static_cast<std::size_t>(rows));
-  for (int v = 0; v < rows; ++v) {
-    const float* row = depth.ptr<float>(v * step);
-    for (int u = 0; u < cols; ++u) z_of[static_cast<std::size_t>(v * cols + u)] = row[u * step];
-  }
-  // Unprojection factors per grid column and row (pinhole).
-  std::vector<float> ray_x(static_cast<std::size_t>(cols)), ray_y(static_cast<std::size_t>(rows));
+  const int stride = cols + 2;
+  const auto cells = static_cast<std::size_t>(stride) * static_cast<std::size_t>(rows + 2);
+  const auto at = [stride](int u, int v) { return static_cast<std::size_t>((v + 1) * stride + u + 1); };
+  const float min_depth = static_cast<float>(options.min_depth_m);
+  const float max_depth = static_cast<float>(options.max_depth_m);
+  // Per cell its depth and 3-D point (pinhole); cells without a valid depth
+  // and the border are blocked from the start.
+  std::vector<float> z_of(cells, 0.0f), x_of(cells, 0.0f), y_of(cells, 0.0f);
+  cv::Mat owner_kind(rows + 2, stride, CV_8UC1, cv::Scalar(kBlocked));
+  std::uint8_t* kind_of = owner_kind.ptr<std::uint8_t>();
+  std::vector<float> ray_x(static_cast<std::size_t>(cols));
   for (int u = 0; u < cols; ++u) {
     ray_x[static_cast<std::size_t>(u)] = static_cast<float>((u * step - camera.cx) / camera.fx);
   }
   for (int v = 0; v < rows; ++v) {
-    ray_y[static_cast<std::size_t>(v)] = static_cast<float>((v * step - camera.cy) / camera.fy);
+    const float* row = depth.ptr<float>(v * step);
+    const auto ray_y = static_cast<float>((v * step - camera.cy) / camera.fy);
+    for (int u = 0; u < cols; ++u) {
+      const float z = row[u * step];
+      if (!(z >= min_depth && z <= max_depth)) continue;
+      const std::size_t i = at(u, v);
+      z_of[i] = z;
+      x_of[i] = ray_x[static_cast<std::size_t>(u)] * z;
+      y_of[i] = ray_y * z;
+      kind_of[i] = kFree;
+    }
   }
-  const float min_depth = static_cast<float>(options.min_depth_m);
-  const float max_depth = static_cast<float>(options.max_depth_m);
   const float step_m = static_cast<float>(options.max_step_m * step);
   const float step_relative = static_cast<float>(options.max_step_relative * step);
   const float from_seed = static_cast<float>(options.max_depth_from_seed_m);
@@ -90,11 +104,9 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
   const float reach2[2] = {squared_or_none(options.max_distance_from_seed_m),
                            squared_or_none(options.static_distance_from_seed_m)};
 
-  cv::Mat owner_kind = cv::Mat::zeros(rows, cols, CV_8UC1);
-  std::uint8_t* kind_of = owner_kind.ptr<std::uint8_t>();
-  // Grid pixel -> its seed; written when a pixel is claimed, read only for
-  // claimed pixels, so it needs no initialisation.
-  const std::unique_ptr<int[]> seed_of(new int[static_cast<std::size_t>(cols) * rows]);
+  // Grid cell -> its seed; written when a cell is claimed, read only for
+  // claimed cells, so it needs no initialisation.
+  const std::unique_ptr<int[]> seed_of(new int[cells]);
 
   // One breadth-first fill from all seeds at once: a pixel goes to the fill
   // that reaches it in the fewest steps. Dynamic seeds are queued first, so
@@ -108,15 +120,12 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
       const int u = static_cast<int>(std::lround(p.x / static_cast<float>(step)));
       const int v = static_cast<int>(std::lround(p.y / static_cast<float>(step)));
       if (u < 0 || u >= cols || v < 0 || v >= rows) continue;
-      const int index = v * cols + u;
-      if (kind_of[index] != kFree) continue;  // an earlier seed's pixel
-      const float z = z_of[static_cast<std::size_t>(index)];
-      if (!(z >= min_depth && z <= max_depth)) continue;
+      const std::size_t index = at(u, v);
+      if (kind_of[index] != kFree) continue;  // an earlier seed's pixel, or no depth
       kind_of[index] = kind;
-      seed_of[static_cast<std::size_t>(index)] = static_cast<int>(seeds.size());
-      seeds.push_back({ray_x[static_cast<std::size_t>(u)] * z, ray_y[static_cast<std::size_t>(v)] * z,
-                       z, 1});
-      queue.push_back(index);
+      seed_of[index] = static_cast<int>(seeds.size());
+      seeds.push_back({x_of[index], y_of[index], z_of[index], 1});
+      queue.push_back(static_cast<int>(index));
     }
   };
   add_seeds(dynamic_seeds, kDynamicOwner);
@@ -135,6 +144,7 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
   // of the grid in a crowd is then never visited).
   std::size_t dynamic_queued = 0;
   for (const int index : queue) dynamic_queued += kind_of[index] == kDynamicOwner;
+  const int neighbours[4] = {-1, 1, -stride, stride};
   for (std::size_t head = 0; head < queue.size() && dynamic_queued > 0; ++head) {
     if (head == level_end) {
       ++level;
@@ -145,39 +155,34 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
       level_end = queue.size();
     }
     const int index = queue[head];
-    const int v = index / cols;
-    const int u = index - v * cols;
     const std::uint8_t kind = kind_of[index];
     if (kind == kDynamicOwner) --dynamic_queued;
-    const int seed_index = seed_of[static_cast<std::size_t>(index)];
+    const int seed_index = seed_of[index];
     Seed& seed = seeds[static_cast<std::size_t>(seed_index)];
     if (seed.pixels >= max_pixels) continue;
     const float limit2 = reach2[kind == kDynamicOwner ? 0 : 1];
     const float d = z_of[static_cast<std::size_t>(index)];
     const float max_step = step_m + step_relative * d;
-    const int neighbours[4][2] = {{u - 1, v}, {u + 1, v}, {u, v - 1}, {u, v + 1}};
-    for (const auto& [nu, nv] : neighbours) {
-      if (nu < 0 || nu >= cols || nv < 0 || nv >= rows) continue;
-      const int n = nv * cols + nu;
-      if (kind_of[n] != kFree) continue;
+    for (const int offset : neighbours) {
+      const int n = index + offset;
+      if (kind_of[n] != kFree) continue;  // claimed, no depth, or the border
       const float dn = z_of[static_cast<std::size_t>(n)];
-      if (!(dn >= min_depth && dn <= max_depth)) continue;
       if (std::abs(dn - d) > max_step || std::abs(dn - seed.z) > from_seed) continue;
       if (limit2 > 0) {
-        const float dx = ray_x[static_cast<std::size_t>(nu)] * dn - seed.x;
-        const float dy = ray_y[static_cast<std::size_t>(nv)] * dn - seed.y;
+        const float dx = x_of[static_cast<std::size_t>(n)] - seed.x;
+        const float dy = y_of[static_cast<std::size_t>(n)] - seed.y;
         const float dz = dn - seed.z;
         if (dx * dx + dy * dy + dz * dz > limit2) continue;
       }
       kind_of[n] = kind;
-      seed_of[static_cast<std::size_t>(n)] = seed_index;
+      seed_of[n] = seed_index;
       queue.push_back(n);
       dynamic_queued += kind == kDynamicOwner;
       if (++seed.pixels >= max_pixels) break;
     }
   }
   cv::Mat grid_mask;
-  cv::compare(owner_kind, kDynamicOwner, grid_mask, cv::CMP_EQ);
+  cv::compare(owner_kind(cv::Rect(1, 1, cols, rows)), kDynamicOwner, grid_mask, cv::CMP_EQ);
   if (step == 1) return grid_mask;
   // Each grid pixel stands for its step x step block.
   cv::Mat mask;
