@@ -10,6 +10,7 @@
 #include "dlslam/io/sequence.h"
 #include "dlslam/io/sequence_test_folder.h"
 #include "dlslam/util/check.h"
+#include "dlslam/util/crc32.h"
 
 namespace dlslam::io {
 namespace {
@@ -135,6 +136,38 @@ TEST(SequenceBadInput, EmptyAndCorruptImageFiles) {
   const auto size = std::filesystem::file_size(path);
   std::filesystem::resize_file(path, size / 2);
   EXPECT_THAT(FrameError(folder, 0), HasSubstr("depth/0.png"));
+}
+
+// Chunk checksums that add up over image data that does not inflate (a
+// writer's bug, not a disk's): libpng grey-fills or fails without a reason;
+// the frame fails, naming the file, its list line and the zlib stream.
+TEST(SequenceBadInput, DepthPngWithValidChecksumsButBrokenImageDataFailsItsFrame) {
+  SequenceFolder folder;
+  folder.WriteValidSequence(3);
+  cv::Mat depth(48, 64, CV_16UC1);  // WriteValidSequence's camera
+  cv::randu(depth, 500, 5000);
+  std::vector<uchar> png;
+  ASSERT_TRUE(cv::imencode(".png", depth, png));
+  // The first IDAT chunk: length (4), "IDAT", 2 bytes of zlib header, then
+  // the first deflate block, whose type bits become the reserved type 3.
+  std::size_t at = 8;
+  while (at + 8 <= png.size() && std::string(reinterpret_cast<const char*>(&png[at + 4]), 4) != "IDAT") {
+    at += 12 + (std::size_t{png[at]} << 24 | std::size_t{png[at + 1]} << 16 | std::size_t{png[at + 2]} << 8 |
+                png[at + 3]);
+  }
+  ASSERT_LT(at + 11, png.size()) << "no IDAT chunk";
+  const std::size_t length = std::size_t{png[at]} << 24 | std::size_t{png[at + 1]} << 16 |
+                             std::size_t{png[at + 2]} << 8 | png[at + 3];
+  png[at + 10] |= 0x06;
+  const std::uint32_t crc =
+      Crc32(std::vector<std::uint8_t>(png.begin() + static_cast<std::ptrdiff_t>(at + 4),
+                                      png.begin() + static_cast<std::ptrdiff_t>(at + 8 + length)));
+  for (int i = 0; i < 4; ++i) png[at + 8 + length + static_cast<std::size_t>(i)] = static_cast<uchar>(crc >> (24 - 8 * i));
+  std::ofstream(folder.dir() / "depth/1.png", std::ios::binary)
+      .write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  EXPECT_TRUE(RgbdSequence::Open(folder.dir()).TryLoadFrame(0).ok());
+  EXPECT_THAT(FrameError(folder, 1),
+              AllOf(HasSubstr("depth/1.png"), HasSubstr("depth.txt:4"), HasSubstr("not a valid zlib stream")));
 }
 
 // OpenCV decodes a truncated JPEG into grey pixels with only a warning: the
