@@ -98,51 +98,71 @@ cv::Mat FreeSpaceCheck::Violations(const cv::Mat& depth, const SE3d& cam_from_wo
   s = FreeSpaceStats{};
   s.views = views();
   if (views_.empty()) return {};
-  // The current cells' points, once for all views.
+  // The current cells' points, once for all views, one array per axis so
+  // that the projection below runs on vector registers.
   const cv::Mat centre = CentreDepths(depth);
-  std::vector<Eigen::Vector3f> points;
+  std::vector<float> px, py, pz;
   std::vector<int> cell_of;
-  points.reserve(static_cast<std::size_t>(cells_.area()));
+  for (std::vector<float>* axis : {&px, &py, &pz}) axis->reserve(static_cast<std::size_t>(cells_.area()));
   cell_of.reserve(static_cast<std::size_t>(cells_.area()));
   for (int i = 0; i < cells_.area(); ++i) {
     const float z = centre.ptr<float>()[i];
     if (z <= 0) continue;
     const Eigen::Vector2f& ray = rays_[static_cast<std::size_t>(i)];
-    points.emplace_back(ray.x() * z, ray.y() * z, z);
+    px.push_back(ray.x() * z);
+    py.push_back(ray.y() * z);
+    pz.push_back(z);
     cell_of.push_back(i);
   }
+  const std::size_t n_points = px.size();
   const int cell = options_.cell_px;
   const bool distorted = camera_.HasDistortion();
   const float fx = static_cast<float>(camera_.fx), fy = static_cast<float>(camera_.fy);
   const float cx = static_cast<float>(camera_.cx), cy = static_cast<float>(camera_.cy);
   const float min_depth = static_cast<float>(options_.min_depth_m);
+  const float width = static_cast<float>(camera_.width), height = static_cast<float>(camera_.height);
   const float a = static_cast<float>(options_.depth_threshold_m), b = static_cast<float>(options_.depth_threshold_per_m2);
   cv::Mat violated(cells_, CV_8UC1, cv::Scalar(0));
   std::vector<int> through_cells;
+  // Per point in a view: its depth there and its pixel, -1 when it falls
+  // behind the view or outside its image.
+  std::vector<float> view_z(n_points), view_u(n_points), view_v(n_points);
   const SE3d world_from_cam = cam_from_world.Inverse();
   for (const View& view : views_) {
     const SE3d view_from_cam = view.cam_from_world * world_from_cam;
-    const Eigen::Matrix3f rotation = view_from_cam.rotationMatrix().cast<float>();
-    const Eigen::Vector3f translation = view_from_cam.translation().cast<float>();
+    const Eigen::Matrix3f r = view_from_cam.rotationMatrix().cast<float>();
+    const Eigen::Vector3f t = view_from_cam.translation().cast<float>();
+    // No branches in these loops: the compiler vectorises them.
+    for (std::size_t k = 0; k < n_points; ++k) {
+      const float x = r(0, 0) * px[k] + r(0, 1) * py[k] + r(0, 2) * pz[k] + t.x();
+      const float y = r(1, 0) * px[k] + r(1, 1) * py[k] + r(1, 2) * pz[k] + t.y();
+      const float z = r(2, 0) * px[k] + r(2, 1) * py[k] + r(2, 2) * pz[k] + t.z();
+      view_z[k] = z;
+      view_u[k] = x;
+      view_v[k] = y;
+    }
+    if (distorted) {
+      for (std::size_t k = 0; k < n_points; ++k) {
+        const Eigen::Vector2d xd = camera_.Distort(Eigen::Vector2d(view_u[k] / view_z[k], view_v[k] / view_z[k]));
+        view_u[k] = static_cast<float>(camera_.fx * xd.x() + camera_.cx);
+        view_v[k] = static_cast<float>(camera_.fy * xd.y() + camera_.cy);
+      }
+    } else {
+      for (std::size_t k = 0; k < n_points; ++k) {
+        view_u[k] = fx * view_u[k] / view_z[k] + cx;
+        view_v[k] = fy * view_v[k] / view_z[k] + cy;
+      }
+    }
     through_cells.clear();
     int compared = 0;
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const Eigen::Vector3f p = rotation * points[k] + translation;
-      if (p.z() < min_depth) continue;
-      float u, v;
-      if (distorted) {
-        const Eigen::Vector2d xd = camera_.Distort(Eigen::Vector2d(p.x() / p.z(), p.y() / p.z()));
-        u = static_cast<float>(camera_.fx * xd.x() + camera_.cx);
-        v = static_cast<float>(camera_.fy * xd.y() + camera_.cy);
-      } else {
-        u = fx * p.x() / p.z() + cx;
-        v = fy * p.y() / p.z() + cy;
-      }
-      if (!(u >= 0 && u < static_cast<float>(camera_.width) && v >= 0 && v < static_cast<float>(camera_.height))) continue;
+    for (std::size_t k = 0; k < n_points; ++k) {
+      const float z = view_z[k], u = view_u[k], v = view_v[k];
+      if (z < min_depth) continue;
+      if (!(u >= 0 && u < width && v >= 0 && v < height)) continue;
       const float seen = view.nearest.ptr<float>(static_cast<int>(v) / cell)[static_cast<int>(u) / cell];
       if (seen <= 0) continue;
       ++compared;
-      if (seen - p.z() > a + b * p.z() * p.z()) through_cells.push_back(cell_of[k]);
+      if (seen - z > a + b * z * z) through_cells.push_back(cell_of[k]);
     }
     if (compared == 0) continue;
     if (static_cast<double>(through_cells.size()) > options_.max_violated_share * compared) {
