@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "dlslam/dynamic/cell_grid.h"
+#include "dlslam/image/upsample.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam::dynamic {
@@ -185,9 +186,7 @@ cv::Mat FreeSpaceCheck::Violations(const cv::Mat& depth, const SE3d& cam_from_wo
     mask[i] = keep[static_cast<std::size_t>(label[i])] ? 255 : 0;
     s.cells_violated += mask[i] != 0;
   }
-  cv::Mat full;
-  cv::resize(violated, full, cv::Size(cells_.width * cell, cells_.height * cell), 0, 0, cv::INTER_NEAREST);
-  return full(cv::Rect(0, 0, camera_.width, camera_.height)).clone();
+  return image::UpsampleNearest(violated, cell, {camera_.width, camera_.height});
 }
 
 }  // namespace dlslam::dynamic

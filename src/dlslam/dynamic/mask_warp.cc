@@ -6,6 +6,7 @@
 
 #include "dlslam/dynamic/cell_grid.h"
 #include "dlslam/image/disc_dilation.h"
+#include "dlslam/image/upsample.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam::dynamic {
@@ -101,9 +102,7 @@ cv::Mat MaskWarper::Warp(const cv::Mat& mask_s, const cv::Mat& depth_s, const SE
     image::DilateDisc(carried, grow, carried);
   }
   if (cell == 1) return carried;
-  cv::Mat full;
-  cv::resize(carried, full, cv::Size(cells_.width * cell, cells_.height * cell), 0, 0, cv::INTER_NEAREST);
-  return full(cv::Rect(0, 0, w, h)).clone();
+  return image::UpsampleNearest(carried, cell, {w, h});
 }
 
 }  // namespace dlslam::dynamic

@@ -7,6 +7,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "dlslam/image/upsample.h"
 #include "dlslam/util/check.h"
 
 namespace dlslam::dynamic {
@@ -185,9 +186,7 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
   cv::compare(owner_kind(cv::Rect(1, 1, cols, rows)), kDynamicOwner, grid_mask, cv::CMP_EQ);
   if (step == 1) return grid_mask;
   // Each grid pixel stands for its step x step block.
-  cv::Mat mask;
-  cv::resize(grid_mask, mask, cv::Size(cols * step, rows * step), 0, 0, cv::INTER_NEAREST);
-  return mask(cv::Rect(0, 0, depth.cols, depth.rows)).clone();
+  return image::UpsampleNearest(grid_mask, step, depth.size());
 }
 
 }  // namespace dlslam::dynamic

@@ -1,9 +1,11 @@
-// Disc dilation of a crowd-sized mask: ours against cv::dilate.
+// Disc dilation of a crowd-sized mask (ours against cv::dilate) and a
+// coarse mask back at full size (ours against cv::resize).
 #include <benchmark/benchmark.h>
 
 #include <opencv2/imgproc.hpp>
 
 #include "dlslam/image/disc_dilation.h"
+#include "dlslam/image/upsample.h"
 
 namespace {
 
@@ -40,5 +42,31 @@ void BM_CvDilateEllipse(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_CvDilateEllipse)->Arg(3)->Arg(5)->Arg(10)->Unit(benchmark::kMicrosecond);
+
+// The free-space check's 4 px cells (arg 4) and region growing's 2 px grid
+// (arg 2) back at 640x480.
+void BM_UpsampleNearest(benchmark::State& state) {
+  const int factor = static_cast<int>(state.range(0));
+  cv::Mat grid;
+  cv::resize(CrowdMask(), grid, cv::Size(640 / factor, 480 / factor), 0, 0, cv::INTER_NEAREST);
+  cv::Mat full;
+  for (auto _ : state) {
+    dlslam::image::UpsampleNearest(grid, factor, {640, 480}, full);
+    benchmark::DoNotOptimize(full.data);
+  }
+}
+BENCHMARK(BM_UpsampleNearest)->Arg(2)->Arg(4)->Unit(benchmark::kMicrosecond);
+
+void BM_CvResizeNearest(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const int factor = static_cast<int>(state.range(0));
+  cv::Mat grid, full;
+  cv::resize(CrowdMask(), grid, cv::Size(640 / factor, 480 / factor), 0, 0, cv::INTER_NEAREST);
+  for (auto _ : state) {
+    cv::resize(grid, full, cv::Size(640, 480), 0, 0, cv::INTER_NEAREST);
+    benchmark::DoNotOptimize(full.data);
+  }
+}
+BENCHMARK(BM_CvResizeNearest)->Arg(2)->Arg(4)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
