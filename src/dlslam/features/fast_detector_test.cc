@@ -125,6 +125,32 @@ TEST(ComputeFastScoresTest, NarrowAndOddRegionsAgreeWithTheWholeImage) {
   }
 }
 
+// Every width from one pixel to past two 32-pixel blocks, so each vector
+// path (32 lanes where the CPU has AVX2, 16, one pixel at a time) and each
+// overlapping last block meets the one-pixel score.
+TEST(ComputeFastScoresTest, EveryWidthScoresEachPixelAsFast9Score) {
+  const cv::Mat image = testing::SyntheticTexture(120, 40, 5);
+  int offsets[16];
+  FastCircleOffsets(static_cast<int>(image.step1()), offsets);
+  for (int width = 1; width <= 75; ++width) {
+    const cv::Rect region(3 + width % 5, 4, width, 9);
+    cv::Mat scores(image.size(), CV_8UC1, cv::Scalar(77));
+    std::vector<cv::Point> corners;
+    ComputeFastScores(image, region, 12, scores, corners);
+    std::vector<cv::Point> expected;
+    for (int y = region.y; y < region.br().y; ++y) {
+      for (int x = region.x; x < region.br().x; ++x) {
+        const int score = Fast9Score(image.ptr<uchar>(y) + x, offsets);
+        ASSERT_EQ(scores.at<uchar>(y, x), score >= 12 ? score : 0) << "width " << width << " at " << x << ", " << y;
+        if (score >= 12) expected.emplace_back(x, y);
+      }
+    }
+    EXPECT_EQ(corners, expected) << "width " << width;
+    EXPECT_EQ(scores.at<uchar>(region.y, region.x - 1), 77) << "pixels outside the region untouched";
+    EXPECT_EQ(scores.at<uchar>(region.y, region.br().x), 77);
+  }
+}
+
 TEST(ComputeFastScoresTest, RejectsRegionsTooCloseToTheEdge) {
   const cv::Mat image = testing::SyntheticTexture(64, 64);
   cv::Mat scores;
