@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "dlslam/dynamic/cell_grid.h"
+#include "dlslam/image/connected_components.h"
 #include "dlslam/image/upsample.h"
 #include "dlslam/util/check.h"
 
@@ -174,11 +175,12 @@ cv::Mat FreeSpaceCheck::Violations(const cv::Mat& depth, const SE3d& cam_from_wo
     for (const int i : through_cells) violated.ptr<std::uint8_t>()[i] = 255;
   }
   // Small blobs are depth noise or a pose a little off at an edge.
-  cv::Mat labels, blob_stats, centroids;
-  const int n = cv::connectedComponentsWithStats(violated, labels, blob_stats, centroids, 8, CV_32S);
+  cv::Mat labels;
+  std::vector<int> areas;
+  const int n = image::LabelComponents(violated, labels, &areas);
   std::vector<std::uint8_t> keep(static_cast<std::size_t>(n), 0);
   for (int i = 1; i < n; ++i) {
-    keep[static_cast<std::size_t>(i)] = blob_stats.at<int>(i, cv::CC_STAT_AREA) >= options_.min_region_cells;
+    keep[static_cast<std::size_t>(i)] = areas[static_cast<std::size_t>(i)] >= options_.min_region_cells;
   }
   const int* label = labels.ptr<int>();
   auto* mask = violated.ptr<std::uint8_t>();

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "dlslam/image/connected_components.h"
 #include "dlslam/image/disc_dilation.h"
 #include "dlslam/util/check.h"
 
@@ -51,7 +52,7 @@ struct Segments {
 // Points on a non-zero pixel of `ignore` (optional) are not counted.
 Segments CountEvidence(const cv::Mat& mask, const GeometryResult& geometry, const cv::Mat& ignore = {}) {
   Segments s;
-  const int count = cv::connectedComponents(mask != 0, s.labels, 8, CV_32S);
+  const int count = image::LabelComponents(mask, s.labels);
   s.static_points.assign(static_cast<std::size_t>(count), 0);
   s.dynamic_points.assign(static_cast<std::size_t>(count), 0);
   for (std::size_t i = 0; i < geometry.points.size() && i < geometry.labels.size(); ++i) {
