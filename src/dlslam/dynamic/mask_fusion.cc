@@ -1,7 +1,5 @@
 #include "dlslam/dynamic/mask_fusion.h"
 
-#include <opencv2/imgproc.hpp>
-
 #include <cmath>
 #include <vector>
 

@@ -5,8 +5,6 @@
 #include <cstdint>
 #include <memory>
 
-#include <opencv2/imgproc.hpp>
-
 #include "dlslam/image/upsample.h"
 #include "dlslam/util/check.h"
 

@@ -200,13 +200,16 @@ void ComputeFastScores(const cv::Mat& image, const cv::Rect& region, int thresho
   FastCircleOffsets(static_cast<int>(image.step1()), offsets);
   const int x_end = region.x + region.width;
   constexpr int kLanes = 16;
+#if DLSLAM_FAST_AVX2
+  const bool avx2_rows = region.width >= 32 && CpuHasAvx2();
+#endif
 
   for (int y = region.y; y < region.y + region.height; ++y) {
     const uchar* row = image.ptr<uchar>(y);
     uchar* score_row = scores.ptr<uchar>(y);
     int x = region.x;
 #if DLSLAM_FAST_AVX2
-    if (region.width >= 32 && CpuHasAvx2()) {
+    if (avx2_rows) {
       ScoreRowAvx2(row, offsets, x, x_end, y, threshold, score_row, candidates);
       continue;
     }
