@@ -183,9 +183,10 @@ void BM_GrowDynamicRegions(benchmark::State& state) {
     }
   }
   const RegionGrowingOptions options;
+  RegionGrowingBuffers buffers;  // as the geometry detector keeps them
   cv::Mat grown;
   for (auto _ : state) {
-    grown = GrowDynamicRegions(f.depth, f.camera, dynamic_seeds, static_seeds, options);
+    grown = GrowDynamicRegions(f.depth, f.camera, dynamic_seeds, static_seeds, options, &buffers);
     benchmark::DoNotOptimize(grown.data);
   }
   state.counters["dynamic_seeds"] = static_cast<double>(dynamic_seeds.size());

@@ -101,7 +101,7 @@ GeometryResult GeometryDetector::Detect(const cv::Mat& depth, const CameraIntrin
       }
     }
   }
-  result.dynamic_mask = GrowDynamicRegions(depth, intrinsics, seeds, barriers, options_.region);
+  result.dynamic_mask = GrowDynamicRegions(depth, intrinsics, seeds, barriers, options_.region, &region_buffers_);
   if (!moved_in.empty()) result.dynamic_mask |= moved_in;
   return result;
 }

@@ -86,6 +86,7 @@ class GeometryDetector {
   GeometryOptions options_;
   std::unique_ptr<PointSearch> search_;
   std::vector<cv::Point> depth_pixels_;  // per point: the pixel that decided (buffer)
+  RegionGrowingBuffers region_buffers_;
 };
 
 }  // namespace dlslam::dynamic

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <memory>
 
 #include "dlslam/image/upsample.h"
 #include "dlslam/util/check.h"
@@ -44,23 +43,22 @@ constexpr std::uint8_t kStaticOwner = 1;
 constexpr std::uint8_t kDynamicOwner = 255;
 constexpr std::uint8_t kBlocked = 2;  // no valid depth, or the grid's border
 
-struct Seed {
-  float x, y, z;  // 3-D point in the camera frame [m]
-  int pixels;     // claimed so far
-};
-
 }  // namespace
 
 cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
                            const std::vector<cv::Point2f>& dynamic_seeds,
                            const std::vector<cv::Point2f>& static_seeds,
-                           const RegionGrowingOptions& options) {
+                           const RegionGrowingOptions& options, RegionGrowingBuffers* buffers) {
   DLSLAM_CHECK(depth.type() == CV_32FC1, "GrowDynamicRegions: depth must be CV_32FC1, got type {}",
                depth.type());
   DLSLAM_CHECK(depth.cols == camera.width && depth.rows == camera.height,
                "GrowDynamicRegions: depth is {}x{}, the camera {}x{}", depth.cols, depth.rows,
                camera.width, camera.height);
   if (dynamic_seeds.empty()) return cv::Mat::zeros(depth.size(), CV_8UC1);
+  RegionGrowingBuffers own;
+  RegionGrowingBuffers& b = buffers != nullptr ? *buffers : own;
+  using Cell = RegionGrowingBuffers::Cell;
+  using Seed = RegionGrowingBuffers::Seed;
   // The grid: every step-th pixel of the depth image, with a border of one
   // blocked cell on every side so that a neighbour needs no bounds check.
   const int step = options.pixel_step;
@@ -71,14 +69,17 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
   const auto at = [stride](int u, int v) { return static_cast<std::size_t>((v + 1) * stride + u + 1); };
   const float min_depth = static_cast<float>(options.min_depth_m);
   const float max_depth = static_cast<float>(options.max_depth_m);
-  // Per cell its depth and 3-D point (pinhole); cells without a valid depth
-  // and the border are blocked from the start.
-  std::vector<float> z_of(cells, 0.0f), x_of(cells, 0.0f), y_of(cells, 0.0f);
-  cv::Mat owner_kind(rows + 2, stride, CV_8UC1, cv::Scalar(kBlocked));
-  std::uint8_t* kind_of = owner_kind.ptr<std::uint8_t>();
-  std::vector<float> ray_x(static_cast<std::size_t>(cols));
+  // Per cell its depth and 3-D point (pinhole), written for the cells with a
+  // valid depth (the only ones ever read); the others and the border are
+  // blocked from the start.
+  b.cells.resize(cells);  // no initialisation needed: see above
+  Cell* cell = b.cells.data();
+  b.owner_kind.create(rows + 2, stride, CV_8UC1);
+  b.owner_kind.setTo(cv::Scalar(kBlocked));
+  std::uint8_t* kind_of = b.owner_kind.ptr<std::uint8_t>();
+  b.ray_x.resize(static_cast<std::size_t>(cols));
   for (int u = 0; u < cols; ++u) {
-    ray_x[static_cast<std::size_t>(u)] = static_cast<float>((u * step - camera.cx) / camera.fx);
+    b.ray_x[static_cast<std::size_t>(u)] = static_cast<float>((u * step - camera.cx) / camera.fx);
   }
   for (int v = 0; v < rows; ++v) {
     const float* row = depth.ptr<float>(v * step);
@@ -87,9 +88,9 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
       const float z = row[u * step];
       if (!(z >= min_depth && z <= max_depth)) continue;
       const std::size_t i = at(u, v);
-      z_of[i] = z;
-      x_of[i] = ray_x[static_cast<std::size_t>(u)] * z;
-      y_of[i] = ray_y * z;
+      cell[i].z = z;
+      cell[i].x = b.ray_x[static_cast<std::size_t>(u)] * z;
+      cell[i].y = ray_y * z;
       kind_of[i] = kFree;
     }
   }
@@ -103,17 +104,15 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
   const float reach2[2] = {squared_or_none(options.max_distance_from_seed_m),
                            squared_or_none(options.static_distance_from_seed_m)};
 
-  // Grid cell -> its seed; written when a cell is claimed, read only for
-  // claimed cells, so it needs no initialisation.
-  const std::unique_ptr<int[]> seed_of(new int[cells]);
-
   // One breadth-first fill from all seeds at once: a pixel goes to the fill
   // that reaches it in the fewest steps. Dynamic seeds are queued first, so
   // they win ties and a pixel that is both keeps its dynamic evidence.
-  std::vector<Seed> seeds;
-  seeds.reserve(dynamic_seeds.size() + static_seeds.size());
-  std::vector<int> queue;
-  queue.reserve(1 << 15);
+  // A cell's seed is written when it is claimed and read only for claimed
+  // cells.
+  std::vector<Seed>& seeds = b.seeds;
+  seeds.clear();
+  std::vector<int>& queue = b.queue;
+  queue.clear();
   const auto add_seeds = [&](const std::vector<cv::Point2f>& pixels, std::uint8_t kind) {
     for (const cv::Point2f& p : pixels) {
       const int u = static_cast<int>(std::lround(p.x / static_cast<float>(step)));
@@ -122,8 +121,8 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
       const std::size_t index = at(u, v);
       if (kind_of[index] != kFree) continue;  // an earlier seed's pixel, or no depth
       kind_of[index] = kind;
-      seed_of[index] = static_cast<int>(seeds.size());
-      seeds.push_back({x_of[index], y_of[index], z_of[index], 1});
+      cell[index].seed = static_cast<int>(seeds.size());
+      seeds.push_back({cell[index].x, cell[index].y, cell[index].z, 1});
       queue.push_back(static_cast<int>(index));
     }
   };
@@ -156,32 +155,32 @@ cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
     const int index = queue[head];
     const std::uint8_t kind = kind_of[index];
     if (kind == kDynamicOwner) --dynamic_queued;
-    const int seed_index = seed_of[index];
+    const int seed_index = cell[index].seed;
     Seed& seed = seeds[static_cast<std::size_t>(seed_index)];
     if (seed.pixels >= max_pixels) continue;
     const float limit2 = reach2[kind == kDynamicOwner ? 0 : 1];
-    const float d = z_of[static_cast<std::size_t>(index)];
+    const float d = cell[index].z;
     const float max_step = step_m + step_relative * d;
     for (const int offset : neighbours) {
       const int n = index + offset;
       if (kind_of[n] != kFree) continue;  // claimed, no depth, or the border
-      const float dn = z_of[static_cast<std::size_t>(n)];
-      if (std::abs(dn - d) > max_step || std::abs(dn - seed.z) > from_seed) continue;
+      const Cell& c = cell[n];
+      if (std::abs(c.z - d) > max_step || std::abs(c.z - seed.z) > from_seed) continue;
       if (limit2 > 0) {
-        const float dx = x_of[static_cast<std::size_t>(n)] - seed.x;
-        const float dy = y_of[static_cast<std::size_t>(n)] - seed.y;
-        const float dz = dn - seed.z;
+        const float dx = c.x - seed.x;
+        const float dy = c.y - seed.y;
+        const float dz = c.z - seed.z;
         if (dx * dx + dy * dy + dz * dz > limit2) continue;
       }
       kind_of[n] = kind;
-      seed_of[n] = seed_index;
+      cell[n].seed = seed_index;
       queue.push_back(n);
       dynamic_queued += kind == kDynamicOwner;
       if (++seed.pixels >= max_pixels) break;
     }
   }
   cv::Mat grid_mask;
-  cv::compare(owner_kind(cv::Rect(1, 1, cols, rows)), kDynamicOwner, grid_mask, cv::CMP_EQ);
+  cv::compare(b.owner_kind(cv::Rect(1, 1, cols, rows)), kDynamicOwner, grid_mask, cv::CMP_EQ);
   if (step == 1) return grid_mask;
   // Each grid pixel stands for its step x step block.
   return image::UpsampleNearest(grid_mask, step, depth.size());

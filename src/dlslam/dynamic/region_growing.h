@@ -77,9 +77,28 @@ struct RegionGrowingOptions {
 // Seeds outside the image or on invalid depth are ignored. Returns CV_8UC1,
 // 255 = dynamic, same size as `depth`. Throws dlslam::Error on a depth image
 // of the wrong type or size.
+// The working memory of GrowDynamicRegions (a 320x240 grid: ~1.5 MB). A
+// caller that grows every frame keeps one and passes it, so that nothing is
+// allocated per call; none: the call allocates its own.
+struct RegionGrowingBuffers {
+  struct Cell {
+    float z, x, y;  // depth and 3-D point in the camera frame [m]
+    int seed;       // the fill that claimed the cell
+  };
+  struct Seed {
+    float x, y, z;  // 3-D point in the camera frame [m]
+    int pixels;     // claimed so far
+  };
+  std::vector<Cell> cells;
+  cv::Mat owner_kind;
+  std::vector<float> ray_x;
+  std::vector<Seed> seeds;
+  std::vector<int> queue;
+};
+
 cv::Mat GrowDynamicRegions(const cv::Mat& depth, const CameraIntrinsics& camera,
                            const std::vector<cv::Point2f>& dynamic_seeds,
                            const std::vector<cv::Point2f>& static_seeds,
-                           const RegionGrowingOptions& options);
+                           const RegionGrowingOptions& options, RegionGrowingBuffers* buffers = nullptr);
 
 }  // namespace dlslam::dynamic
