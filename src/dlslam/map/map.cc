@@ -1,6 +1,7 @@
 #include "dlslam/map/map.h"
 
 #include <algorithm>
+#include <bit>
 
 #include "dlslam/util/check.h"
 
@@ -125,6 +126,34 @@ void Map::UpdateConnections(KeyFrameId keyframe, int min_shared) {
   }
 }
 
+namespace {
+
+// A set of map point ids sized once for at most `capacity` of them: open
+// addressing with linear probing in a power-of-two table at most half full.
+// The local map inserts every point of ~40 keyframes each frame; with
+// std::unordered_set that was most of the call (1.03 ms in BM_GetLocalMap).
+class IdSet {
+ public:
+  explicit IdSet(std::size_t capacity) : slots_(std::bit_ceil(2 * capacity + 2), kNoId), mask_(slots_.size() - 1) {}
+  // False when `id` (never kNoId) was in already.
+  bool Insert(MapPointId id) {
+    // Fibonacci hashing spreads consecutive ids (they are handed out in order).
+    for (std::size_t i = ((id * 0x9E3779B97F4A7C15ull) >> 32) & mask_;; i = (i + 1) & mask_) {
+      if (slots_[i] == id) return false;
+      if (slots_[i] == kNoId) {
+        slots_[i] = id;
+        return true;
+      }
+    }
+  }
+
+ private:
+  std::vector<MapPointId> slots_;
+  std::size_t mask_;
+};
+
+}  // namespace
+
 LocalMapSnapshot Map::GetLocalMap(const std::vector<MapPointId>& matched_points, std::size_t max_keyframes) const {
   std::lock_guard lock(mutex_);
   LocalMapSnapshot snap;
@@ -158,12 +187,11 @@ LocalMapSnapshot Map::GetLocalMap(const std::vector<MapPointId>& matched_points,
   }
   std::size_t slots = 0;
   for (KeyFrameId id : snap.keyframes) slots += keyframes_.at(id).points.size();
-  // Sized once: growing it rehashed every point several times (the bulk of the call).
-  std::unordered_set<MapPointId> seen(2 * slots);
+  IdSet seen(slots);
   snap.points.reserve(slots);
   for (KeyFrameId id : snap.keyframes) {
     for (MapPointId pid : keyframes_.at(id).points) {
-      if (pid == kNoId || !seen.insert(pid).second) continue;
+      if (pid == kNoId || !seen.Insert(pid)) continue;
       const MapPoint& p = points_.at(pid);
       snap.points.push_back({p.id, p.position, p.descriptor, p.normal, p.min_distance, p.max_distance});
     }
