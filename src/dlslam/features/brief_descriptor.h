@@ -39,6 +39,9 @@ class SteeredBrief {
   // Compute uses. For learning and testing.
   cv::Point RotatedPoint(int point, float angle_deg) const;
 
+  // The same tests: the same descriptors.
+  bool operator==(const SteeredBrief& other) const = default;
+
  private:
   static constexpr int kPoints = 2 * kPatternTests;
   alignas(16) std::array<float, kPoints> x_{};  // test points, first and second interleaved

@@ -85,6 +85,40 @@ void BM_OursExtractOutsideMask(benchmark::State& state) {
 }
 BENCHMARK(BM_OursExtractOutsideMask)->Arg(1)->Unit(benchmark::kMillisecond);
 
+// The system's second extraction of a crowded frame after the dynamic stage
+// grew the removal, on the first one's pyramid (timed: the second alone):
+// /0 Reextract, the first extraction outside the network's people with the
+// static thresholds (mode full); /1 ExtractOn, the first extraction of the
+// whole image with the default thresholds (mode geometry). Either reuses the
+// descriptors of the corners the first one described.
+void BM_SecondExtraction(benchmark::State& state) {
+  OrbOptions low;
+  low.fast_threshold_initial = 8;
+  low.fast_threshold_min = 4;
+  OrbExtractor first_default, statics(low);
+  cv::Mat people(BenchImage().size(), CV_8UC1, cv::Scalar(0));
+  people(cv::Rect(100, 60, 128, 420)).setTo(255);
+  cv::Mat grown = people.clone();
+  people(cv::Rect(380, 40, 128, 440)).setTo(255);  // a second person only geometry found
+  grown(cv::Rect(90, 50, 148, 430)).setTo(255);     // and the fusion's margin
+  grown(cv::Rect(370, 30, 148, 450)).setTo(255);
+  const bool full_mode = state.range(0) == 0;
+  OrbFeatures features;
+  for (auto _ : state) {
+    state.PauseTiming();
+    if (full_mode) {
+      statics.Extract(BenchImage(), people, features);
+    } else {
+      first_default.Extract(BenchImage(), cv::Mat(), features);
+    }
+    state.ResumeTiming();
+    features = full_mode ? statics.Reextract(grown) : statics.ExtractOn(first_default, grown);
+    benchmark::DoNotOptimize(features.descriptors.data);
+  }
+  AddContext(state, features.keypoints.size());
+}
+BENCHMARK(BM_SecondExtraction)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
 void CvOrb(benchmark::State& state, cv::ORB::ScoreType score) {
   SetThreads(state);
   const auto orb = cv::ORB::create(1000, 1.2f, 8, 31, 0, 2, score, 31, 20);

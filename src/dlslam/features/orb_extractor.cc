@@ -36,6 +36,7 @@ OrbExtractor::OrbExtractor(const OrbOptions& options, std::span<const PatternTes
   smoothed_.resize(n);
   level_corners_.resize(n);
   detected_.resize(n);
+  described_.resize(n);
 }
 
 OrbFeatures OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask) {
@@ -165,17 +166,19 @@ void OrbExtractor::Extract(const cv::Mat& image, const cv::Mat& exclusion_mask,
   PrepareImage(image);
   extracted_size_ = image.size();
   for (cv::Mat& level : smoothed_) level.release();
-  DetectSelectDescribe(exclusion_mask, out);
+  for (std::vector<Described>& level : described_) level.clear();
+  DetectSelectDescribe(exclusion_mask, out, nullptr);
 }
 
-void OrbExtractor::DetectSelectDescribe(const cv::Mat& exclusion_mask, OrbFeatures& out) {
+void OrbExtractor::DetectSelectDescribe(const cv::Mat& exclusion_mask, OrbFeatures& out,
+                                        const OrbExtractor* known) {
   SetExclusion(exclusion_mask);
   for (int level = 0; level < options_.n_levels; ++level) {
     DetectLevel(level, exclusion_mask);
     SelectLevel(level, exclusion_mask);
   }
   detected_exclusion_ = excluded_.clone();
-  Describe(out);
+  Describe(out, known);
 }
 
 bool OrbExtractor::CanExtractOn(const OrbExtractor& source) const {
@@ -193,8 +196,9 @@ OrbFeatures OrbExtractor::ExtractOn(const OrbExtractor& source, const cv::Mat& e
   smoothed_ = source.smoothed_;
   borrowed_ = true;
   extracted_size_ = source.extracted_size_;
+  for (std::vector<Described>& level : described_) level.clear();
   OrbFeatures out;
-  DetectSelectDescribe(exclusion_mask, out);
+  DetectSelectDescribe(exclusion_mask, out, brief_ == source.brief_ ? &source : nullptr);
   return out;
 }
 
@@ -213,30 +217,51 @@ OrbFeatures OrbExtractor::Reextract(const cv::Mat& exclusion_mask) {
   }
   if (!covers) detected_exclusion_ = excluded_.clone();
   OrbFeatures out;
-  Describe(out);
+  Describe(out, this);
   return out;
 }
 
-void OrbExtractor::Describe(OrbFeatures& out) {
+void OrbExtractor::Describe(OrbFeatures& out, const OrbExtractor* known) {
   size_t total = 0;
   for (const std::vector<FastCorner>& corners : level_corners_) total += corners.size();
   out.keypoints.clear();
   out.keypoints.reserve(total);
   out.descriptors.create(static_cast<int>(total), kDescriptorBytes, CV_8UC1);
   int row = 0;
+  const auto by_key = [](const Described& a, const Described& b) { return a.key < b.key; };
   for (size_t level = 0; level < pyramid_.size(); ++level) {
     const std::vector<FastCorner>& corners = level_corners_[level];
     if (corners.empty()) continue;
     if (smoothed_[level].empty()) SmoothLevel(level);  // kept for a Reextract
     const auto scale = static_cast<float>(level_scales_[level]);
+    const int width = pyramid_[level].cols;
+    // Copied: `known` may be this extractor, whose list grows below.
+    const std::vector<Described> earlier =
+        known != nullptr && level < known->described_.size() ? known->described_[level] : std::vector<Described>();
+    std::vector<Described>& described = described_[level];
+    described = earlier;
     for (const FastCorner& c : corners) {
-      const float angle = IntensityCentroidAngle(pyramid_[level], c.x, c.y);
-      brief_.Compute(smoothed_[level], c.x, c.y, angle, out.descriptors.ptr<uchar>(row++));
+      uchar* descriptor = out.descriptors.ptr<uchar>(row++);
+      const Described probe{c.y * width + c.x, 0.0f, {}};
+      const auto it = std::lower_bound(earlier.begin(), earlier.end(), probe, by_key);
+      float angle = 0.0f;
+      if (it != earlier.end() && it->key == probe.key) {
+        angle = it->angle;
+        std::copy(it->descriptor.begin(), it->descriptor.end(), descriptor);
+      } else {
+        angle = IntensityCentroidAngle(pyramid_[level], c.x, c.y);
+        brief_.Compute(smoothed_[level], c.x, c.y, angle, descriptor);
+        Described& d = described.emplace_back(Described{probe.key, angle, {}});
+        std::copy(descriptor, descriptor + kDescriptorBytes, d.descriptor.begin());
+      }
       out.keypoints.emplace_back(cv::Point2f(static_cast<float>(c.x) * scale,
                                              static_cast<float>(c.y) * scale),
                                  static_cast<float>(kPatchSize) * scale, angle,
                                  static_cast<float>(c.score), static_cast<int>(level));
     }
+    const auto added = described.begin() + static_cast<std::ptrdiff_t>(earlier.size());
+    std::sort(added, described.end(), by_key);
+    std::inplace_merge(described.begin(), added, described.end(), by_key);
   }
 }
 
@@ -244,6 +269,7 @@ OrbFeatures OrbExtractor::Describe(const cv::Mat& image, const std::vector<cv::K
   extracted_size_ = cv::Size();  // the pyramid is rebuilt without corners: no Reextract after this
   PrepareImage(image);
   for (cv::Mat& level : smoothed_) level.release();
+  for (std::vector<Described>& level : described_) level.clear();
   OrbFeatures out;
   out.descriptors.create(0, kDescriptorBytes, CV_8UC1);
   cv::Mat row(1, kDescriptorBytes, CV_8UC1);

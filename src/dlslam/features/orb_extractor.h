@@ -9,6 +9,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -86,11 +87,16 @@ class OrbExtractor {
   void BuildPyramid(const cv::Mat& grey);
   void SmoothLevel(size_t level);
   void SetExclusion(const cv::Mat& exclusion_mask);  // checks; excluded_ and its integral
-  void DetectSelectDescribe(const cv::Mat& exclusion_mask, OrbFeatures& out);  // on the current pyramid
+  // On the current pyramid; `known`: see Describe.
+  void DetectSelectDescribe(const cv::Mat& exclusion_mask, OrbFeatures& out, const OrbExtractor* known);
   void DetectLevel(int level, const cv::Mat& exclusion_mask);
   // Keeps the level's corners outside the mask, spread by the quadtree.
   void SelectLevel(int level, const cv::Mat& exclusion_mask);
-  void Describe(OrbFeatures& out);  // of the selected corners of every level
+  // Of the selected corners of every level; a corner that `known`'s
+  // described_ holds (an extractor on the same pyramid with the same tests,
+  // may be this one or null) is copied, not computed. Leaves described_
+  // holding both.
+  void Describe(OrbFeatures& out, const OrbExtractor* known);
 
   OrbOptions options_;
   SteeredBrief brief_;
@@ -109,6 +115,16 @@ class OrbExtractor {
   cv::Size extracted_size_;  // empty before the first Extract
   bool borrowed_ = false;   // pyramid_ and smoothed_ share another extractor's (ExtractOn)
   cv::Mat excluded_, excluded_integral_;  // the exclusion mask as 0/255, and its integral image
+  // Every corner described on the current pyramid, per level sorted by its
+  // pixel (key = y * level width + x): a re-extraction of the same image
+  // (Reextract, or another extractor's ExtractOn this one) keeps most of the
+  // first one's corners, and describes only the others.
+  struct Described {
+    int key;
+    float angle;
+    std::array<uchar, kDescriptorBytes> descriptor;
+  };
+  std::vector<std::vector<Described>> described_;
 };
 
 }  // namespace dlslam::features

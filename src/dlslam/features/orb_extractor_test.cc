@@ -202,6 +202,24 @@ TEST(OrbExtractorTest, ExtractOnAnotherExtractorsPyramidGivesWhatItsOwnExtractio
   EXPECT_THROW(different.ExtractOn(source, mask), Error);
 }
 
+TEST(OrbExtractorTest, ExtractOnWithOtherTestsDescribesItsOwnWay) {
+  // Descriptors of the source's corners are reused only with the same tests.
+  const cv::Mat image = testing::SyntheticTexture();
+  std::vector<PatternTest> reversed(LearnedOrbPattern().begin(), LearnedOrbPattern().end());
+  std::reverse(reversed.begin(), reversed.end());
+  OrbExtractor source, second({}, reversed), fresh({}, reversed);
+  source.Extract(image);
+  cv::Mat mask(image.size(), CV_8UC1, cv::Scalar(0));
+  mask(cv::Rect(100, 50, 200, 300)).setTo(255);
+  const OrbFeatures on = second.ExtractOn(source, mask);
+  const OrbFeatures own = fresh.Extract(image, mask);
+  ExpectSameFeatures(on, own);
+  ASSERT_GT(on.keypoints.size(), 100u);
+  const OrbFeatures source_features = source.Reextract(mask);  // the source's tests, the same corners
+  ASSERT_EQ(source_features.keypoints.size(), on.keypoints.size());
+  EXPECT_GT(cv::norm(source_features.descriptors, on.descriptors, cv::NORM_HAMMING), 0.0);
+}
+
 TEST(OrbExtractorTest, ReextractNeedsAnExtractionOfTheSameSize) {
   OrbExtractor orb;
   const cv::Mat image = testing::SyntheticTexture();
