@@ -2,14 +2,16 @@
 // robust kernel and two-pass scheme as the Ceres solver (bundle_adjuster.cc),
 // written for the shape of local bundles: a few dozen poses, thousands of
 // points. Each iteration linearises every observation once (analytic
-// Jacobians of pose_optimizer.h), eliminates the points (3x3 blocks) by the
-// Schur complement and solves the dense reduced camera system (6 per free
-// pose) with a Cholesky factorisation. The Huber kernel is applied by
+// Jacobians of pose_optimizer.h; the pass that costs a step also builds the
+// next iteration's system), eliminates the points (3x3 blocks) by the Schur
+// complement and solves the dense reduced camera system (6 per free pose)
+// with a Cholesky factorisation. The Huber kernel is applied by
 // iteratively reweighted least squares, whose fixed point is the Huber
 // minimum that Ceres finds too.
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <atomic>
@@ -26,14 +28,11 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix63d = Eigen::Matrix<double, 6, 3>;
 
-// The whitened squared error of an observation (the caller applies `information`).
-bool Linearize(const BundleProblem& problem, const BundleProblem::Observation& o, bool with_jacobian,
-               ObservationLinearization* l) {
-  PoseObservation po;
-  po.point_world = problem.points[o.point];
-  po.pixel = o.pixel;
-  po.right_u = o.right_u;
-  return LinearizeObservation(problem.camera, problem.poses[o.pose].cam_from_world, po, with_jacobian, l);
+// hat(p) * x: each column of x crossed with p.
+inline Eigen::Matrix3d CrossColumns(const Eigen::Vector3d& p, const Eigen::Matrix3d& x) {
+  Eigen::Matrix3d out;
+  for (int c = 0; c < 3; ++c) out.col(c) = p.cross(x.col(c));
+  return out;
 }
 
 class LmSolver {
@@ -54,7 +53,8 @@ class LmSolver {
           bool* aborted) {
     robust_ = robust;
     skip_ = &skip;
-    double cost = Cost();
+    Evaluate(&current_);
+    double cost = current_.cost;
     *initial_cost = cost;
     double lambda = 1e-4;
     int done = 0;
@@ -63,7 +63,6 @@ class LmSolver {
         *aborted = true;
         break;
       }
-      BuildNormalEquations();
       bool accepted = false;
       double previous = cost;
       for (int attempt = 0; attempt < 10 && !accepted; ++attempt) {
@@ -74,9 +73,10 @@ class LmSolver {
         const std::vector<SE3d> old_poses = SavePoses();
         const std::vector<Eigen::Vector3d> old_points = p_.points;
         ApplyStep();
-        const double new_cost = Cost();
-        if (new_cost < cost) {
-          cost = new_cost;
+        Evaluate(&candidate_);
+        if (candidate_.cost < cost) {
+          cost = candidate_.cost;
+          std::swap(current_, candidate_);
           lambda = std::max(lambda / 10, 1e-9);
           accepted = true;
         } else {
@@ -96,81 +96,96 @@ class LmSolver {
   }
 
  private:
-  double Chi2Limit(const ObservationLinearization& l) const {
-    return l.rows == 3 ? options_.chi2_stereo : options_.chi2_mono;
-  }
+  // The Gauss-Newton system at the current values: blocks U (free poses), V
+  // (points), W (per observation of a free pose), the gradients, and the
+  // cost 0.5 * sum over active observations of rho(chi2), Huber rho as
+  // Ceres: chi2 inside the threshold, 2 delta sqrt(chi2) - delta^2 outside.
+  struct NormalSystem {
+    std::vector<Matrix6d> U;
+    std::vector<Vector6d> gp;
+    std::vector<Eigen::Matrix3d> V;
+    std::vector<Eigen::Vector3d> gl;
+    std::vector<Matrix63d> W;  // read only for active observations of free poses
+    std::vector<int> rows;     // per point: residual rows of its active observations
+    double cost = 0;
+  };
 
-  // 0.5 * sum over active observations of rho(chi2); Huber rho as Ceres:
-  // chi2 inside the threshold, 2 delta sqrt(chi2) - delta^2 outside.
-  double Cost() const {
+  void Evaluate(NormalSystem* s) {
+    rotations_.resize(p_.poses.size());
+    for (std::size_t i = 0; i < p_.poses.size(); ++i) rotations_[i] = p_.poses[i].cam_from_world.rotationMatrix();
+    s->U.assign(num_free_, Matrix6d::Zero());
+    s->gp.assign(num_free_, Vector6d::Zero());
+    s->V.assign(p_.points.size(), Eigen::Matrix3d::Zero());
+    s->gl.assign(p_.points.size(), Eigen::Vector3d::Zero());
+    s->W.resize(p_.observations.size());
+    s->rows.assign(p_.points.size(), 0);
     double cost = 0;
     ObservationLinearization l;
     for (std::size_t k = 0; k < p_.observations.size(); ++k) {
       if ((*skip_)[k]) continue;
       const auto& o = p_.observations[k];
-      if (!Linearize(p_, o, false, &l)) {
+      const Eigen::Matrix3d& rotation = rotations_[o.pose];
+      const Eigen::Vector3d p = rotation * p_.points[o.point] + p_.poses[o.pose].cam_from_world.translation();
+      if (!LinearizeCameraPoint(p_.camera, p, o.pixel, o.right_u, false, &l)) {
         cost += 1e6;  // behind the camera: heavy but finite, so a step can still leave it
+        s->W[k].setZero();
         continue;
       }
       const double chi2 = o.information * l.residual.head(l.rows).squaredNorm();
-      const double delta_sq = Chi2Limit(l);
-      cost += (!robust_ || chi2 <= delta_sq) ? chi2 : 2 * std::sqrt(delta_sq * chi2) - delta_sq;
-    }
-    return 0.5 * cost;
-  }
-
-  // Gauss-Newton blocks: U (free poses), V (points), W (per observation of a
-  // free pose) and the gradients.
-  void BuildNormalEquations() {
-    U_.assign(num_free_, Matrix6d::Zero());
-    gp_.assign(num_free_, Vector6d::Zero());
-    V_.assign(p_.points.size(), Eigen::Matrix3d::Zero());
-    gl_.assign(p_.points.size(), Eigen::Vector3d::Zero());
-    W_.assign(p_.observations.size(), Matrix63d::Zero());
-    rows_.assign(p_.points.size(), 0);
-    ObservationLinearization l;
-    for (std::size_t k = 0; k < p_.observations.size(); ++k) {
-      if ((*skip_)[k]) continue;
-      const auto& o = p_.observations[k];
-      if (!Linearize(p_, o, true, &l)) continue;
-      const double chi2 = o.information * l.residual.head(l.rows).squaredNorm();
-      const double delta_sq = Chi2Limit(l);
-      const double w = o.information * ((robust_ && chi2 > delta_sq) ? std::sqrt(delta_sq / chi2) : 1.0);
-      // d(residual)/d(point_world) = d(residual)/d(p_cam) * R; the first three
-      // pose columns are d(residual)/d(p_cam) (a translation of the camera frame).
-      const Eigen::Matrix3d j_point = l.jacobian.leftCols<3>() * p_.poses[o.pose].cam_from_world.rotationMatrix();
-      rows_[o.point] += l.rows;
-      V_[o.point].noalias() += w * j_point.transpose() * j_point;
-      gl_[o.point].noalias() += w * j_point.transpose() * l.residual;
+      const double delta_sq = l.rows == 3 ? options_.chi2_stereo : options_.chi2_mono;
+      const bool inside = !robust_ || chi2 <= delta_sq;
+      cost += inside ? chi2 : 2 * std::sqrt(delta_sq * chi2) - delta_sq;
+      const double w = o.information * (inside ? 1.0 : std::sqrt(delta_sq / chi2));
+      // With A = d(projection)/d(p) the residual's Jacobians are -A [I, -hat(p)]
+      // for the pose and -A R for the point, so every block comes from
+      // M = w A^T A and q = w A^T e (half the products of forming J^T J):
+      // U += [M, N^T; N, hat(p) N^T] with N = hat(p) M, W = [M R; hat(p) M R],
+      // V += R^T M R, gradients -[q; p x q] and -R^T q.
+      const Eigen::Matrix3d a = ProjectionJacobian(p_.camera, p, l.rows);
+      const Eigen::Matrix3d m = w * (a.transpose() * a);
+      const Eigen::Vector3d q = w * (a.transpose() * l.residual);
+      const Eigen::Matrix3d mr = m * rotation;
+      s->rows[o.point] += l.rows;
+      s->V[o.point].noalias() += rotation.transpose() * mr;
+      s->gl[o.point].noalias() -= rotation.transpose() * q;
       const int f = free_index_[o.pose];
       if (f < 0) continue;
-      U_[f].noalias() += w * l.jacobian.transpose() * l.jacobian;
-      gp_[f].noalias() += w * l.jacobian.transpose() * l.residual;
-      W_[k].noalias() = w * l.jacobian.transpose() * j_point;
+      const Eigen::Matrix3d n = CrossColumns(p, m);
+      Matrix6d& u = s->U[f];
+      u.topLeftCorner<3, 3>() += m;
+      u.bottomLeftCorner<3, 3>() += n;
+      u.topRightCorner<3, 3>() += n.transpose();
+      u.bottomRightCorner<3, 3>() += CrossColumns(p, n.transpose());
+      s->gp[f].head<3>() -= q;
+      s->gp[f].tail<3>() -= p.cross(q);
+      s->W[k].topRows<3>() = mr;
+      s->W[k].bottomRows<3>() = CrossColumns(p, mr);
     }
+    s->cost = 0.5 * cost;
   }
 
   // Solves the damped system for the pose and point steps by eliminating the
   // points. Marquardt damping: diagonal scaled by (1 + lambda).
   bool SolveStep(double lambda) {
+    const NormalSystem& sys = current_;
     const int n = 6 * num_free_;
     Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n, n);
     Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
     for (int f = 0; f < num_free_; ++f) {
-      Matrix6d u = U_[f];
-      u.diagonal() += lambda * U_[f].diagonal().cwiseMax(1e-6);
+      Matrix6d u = sys.U[f];
+      u.diagonal() += lambda * sys.U[f].diagonal().cwiseMax(1e-6);
       S.block<6, 6>(6 * f, 6 * f) = u;
-      b.segment<6>(6 * f) = -gp_[f];
+      b.segment<6>(6 * f) = -sys.gp[f];
     }
     v_inv_.assign(p_.points.size(), Eigen::Matrix3d::Zero());
     std::vector<Matrix63d> wv;  // W V^-1 per active free-pose observation of the point
     std::vector<int> slots;     // its free-pose slot
     std::vector<std::size_t> ks;  // its observation index
     for (std::size_t j = 0; j < p_.points.size(); ++j) {
-      if (rows_[j] == 0) continue;  // no active observation: the point stays
-      Eigen::Matrix3d v = V_[j];
-      v.diagonal() += lambda * V_[j].diagonal().cwiseMax(1e-6);
-      if (rows_[j] < 3) {
+      if (sys.rows[j] == 0) continue;  // no active observation: the point stays
+      Eigen::Matrix3d v = sys.V[j];
+      v.diagonal() += lambda * sys.V[j].diagonal().cwiseMax(1e-6);
+      if (sys.rows[j] < 3) {
         // One keypoint without depth: free along its ray. A pseudo-inverse
         // keeps it from sliding there on rounding noise (as Ceres' solution,
         // the point then fits its keypoint and leaves the pose alone).
@@ -180,9 +195,10 @@ class LmSolver {
         for (int r = 0; r < 3; ++r) inverse[r] = values[r] > 1e-6 * values.maxCoeff() ? 1.0 / values[r] : 0.0;
         v_inv_[j] = eig.eigenvectors() * inverse.asDiagonal() * eig.eigenvectors().transpose();
       } else {
-        const Eigen::LLT<Eigen::Matrix3d> llt(v);
-        if (llt.info() != Eigen::Success) return false;
-        v_inv_[j] = llt.solve(Eigen::Matrix3d::Identity());
+        // Positive definite (checked by the factorisation), then the 3x3
+        // inverse in closed form: a triangular solve costs twice as much.
+        if (Eigen::LLT<Eigen::Matrix3d>(v).info() != Eigen::Success) return false;
+        v_inv_[j] = v.inverse();
       }
       // S -= W V^-1 W^T over pairs of free poses seeing this point; b += W V^-1 gl.
       wv.clear();
@@ -191,16 +207,23 @@ class LmSolver {
       for (std::size_t k : by_point_[j]) {
         const int f = free_index_[p_.observations[k].pose];
         if (f < 0 || (*skip_)[k]) continue;
-        wv.push_back(W_[k] * v_inv_[j]);
+        wv.push_back(sys.W[k] * v_inv_[j]);
         slots.push_back(f);
         ks.push_back(k);
-        b.segment<6>(6 * f) += wv.back() * gl_[j];
+        b.segment<6>(6 * f) += wv.back() * sys.gl[j];
       }
+      // Only S's lower triangle: the Cholesky factorisation reads no more.
       for (std::size_t a = 0; a < slots.size(); ++a) {
         for (std::size_t c = a; c < slots.size(); ++c) {
-          const Matrix6d block = wv[a] * W_[ks[c]].transpose();
-          S.block<6, 6>(6 * slots[a], 6 * slots[c]) -= block;
-          if (a != c) S.block<6, 6>(6 * slots[c], 6 * slots[a]) -= block.transpose();
+          // Block (row, col) = W_row V^-1 W_col^T with row >= col.
+          const std::size_t hi = slots[a] >= slots[c] ? a : c, lo = hi == a ? c : a;
+          auto target = S.block<6, 6>(6 * slots[hi], 6 * slots[lo]);
+          if (a == c || slots[a] != slots[c]) {
+            target.noalias() -= wv[hi] * sys.W[ks[lo]].transpose();
+          } else {  // two observations of the point in one keyframe
+            const Matrix6d block = wv[hi] * sys.W[ks[lo]].transpose();
+            target -= block + block.transpose();
+          }
         }
       }
     }
@@ -215,10 +238,10 @@ class LmSolver {
     for (int f = 0; f < num_free_; ++f) pose_step_[f] = dp.segment<6>(6 * f);
     point_step_.assign(p_.points.size(), Eigen::Vector3d::Zero());
     for (std::size_t j = 0; j < p_.points.size(); ++j) {
-      Eigen::Vector3d r = -gl_[j];
+      Eigen::Vector3d r = -sys.gl[j];
       for (std::size_t k : by_point_[j]) {
         const int f = free_index_[p_.observations[k].pose];
-        if (f >= 0 && !(*skip_)[k]) r -= W_[k].transpose() * pose_step_[f];
+        if (f >= 0 && !(*skip_)[k]) r -= sys.W[k].transpose() * pose_step_[f];
       }
       point_step_[j] = v_inv_[j] * r;
     }
@@ -249,12 +272,10 @@ class LmSolver {
   std::vector<std::vector<std::size_t>> by_point_;  // observations of each point
   bool robust_ = true;
   const std::vector<bool>* skip_ = nullptr;
-  std::vector<Matrix6d> U_;
-  std::vector<Vector6d> gp_;
-  std::vector<Eigen::Matrix3d> V_, v_inv_;
-  std::vector<Eigen::Vector3d> gl_;
-  std::vector<Matrix63d> W_;
-  std::vector<int> rows_;  // per point: residual rows of its active observations
+  NormalSystem current_;    // at the current values
+  NormalSystem candidate_;  // at the values after a step, until it is accepted
+  std::vector<Eigen::Matrix3d> rotations_;  // per pose, for Evaluate
+  std::vector<Eigen::Matrix3d> v_inv_;
   std::vector<Vector6d> pose_step_;
   std::vector<Eigen::Vector3d> point_step_;
 };

@@ -24,17 +24,21 @@ using Linearization = ObservationLinearization;
 
 // The residual of an observation of the camera-frame point p; false when p
 // is not in front of the camera.
-bool Residual(const CameraIntrinsics& camera, const Eigen::Vector3d& p, const PoseObservation& obs,
-              Linearization* out) {
+bool Residual(const CameraIntrinsics& camera, const Eigen::Vector3d& p, const Eigen::Vector2d& pixel,
+              double right_u, Linearization* out) {
   if (p.z() <= 1e-6) return false;
   const double inv_z = 1.0 / p.z();
   const double u = camera.fx * p.x() * inv_z + camera.cx;
   const double v = camera.fy * p.y() * inv_z + camera.cy;
-  out->rows = obs.right_u >= 0 ? 3 : 2;
-  out->residual.x() = obs.pixel.x() - u;
-  out->residual.y() = obs.pixel.y() - v;
-  out->residual.z() = out->rows == 3 ? obs.right_u - (u - camera.bf * inv_z) : 0.0;
+  out->rows = right_u >= 0 ? 3 : 2;
+  out->residual.x() = pixel.x() - u;
+  out->residual.y() = pixel.y() - v;
+  out->residual.z() = out->rows == 3 ? right_u - (u - camera.bf * inv_z) : 0.0;
   return true;
+}
+bool Residual(const CameraIntrinsics& camera, const Eigen::Vector3d& p, const PoseObservation& obs,
+              Linearization* out) {
+  return Residual(camera, p, obs.pixel, obs.right_u, out);
 }
 
 // d(residual) / d(delta) at the camera-frame point p: -d(u, v, u_right) /
@@ -42,29 +46,37 @@ bool Residual(const CameraIntrinsics& camera, const Eigen::Vector3d& p, const Po
 // the projection's derivative gives (-a, a x p).
 void Jacobian(const CameraIntrinsics& camera, const Eigen::Vector3d& p, int rows,
               Eigen::Matrix<double, 3, 6>* jacobian) {
-  const double inv_z = 1.0 / p.z();
-  const double inv_z2 = inv_z * inv_z;
-  const double du_dz = -camera.fx * p.x() * inv_z2;
-  const double dv_dz = -camera.fy * p.y() * inv_z2;
-  const auto row = [&](int r, double a0, double a1, double a2) {
-    jacobian->row(r) << -a0, -a1, -a2, a1 * p.z() - a2 * p.y(), a2 * p.x() - a0 * p.z(), a0 * p.y() - a1 * p.x();
-  };
-  row(0, camera.fx * inv_z, 0, du_dz);
-  row(1, 0, camera.fy * inv_z, dv_dz);
-  if (rows == 3) {
-    row(2, camera.fx * inv_z, 0, du_dz + camera.bf * inv_z2);
-  } else {
-    jacobian->row(2).setZero();
+  const Eigen::Matrix3d a = ProjectionJacobian(camera, p, rows);
+  for (int r = 0; r < 3; ++r) {
+    jacobian->row(r) << -a(r, 0), -a(r, 1), -a(r, 2), a(r, 1) * p.z() - a(r, 2) * p.y(),
+        a(r, 2) * p.x() - a(r, 0) * p.z(), a(r, 0) * p.y() - a(r, 1) * p.x();
   }
 }
 
 }  // namespace
 
+Eigen::Matrix3d ProjectionJacobian(const CameraIntrinsics& camera, const Eigen::Vector3d& p, int rows) {
+  const double inv_z = 1.0 / p.z();
+  const double inv_z2 = inv_z * inv_z;
+  const double du_dz = -camera.fx * p.x() * inv_z2;
+  const double dv_dz = -camera.fy * p.y() * inv_z2;
+  Eigen::Matrix3d a;
+  a << camera.fx * inv_z, 0, du_dz,  //
+      0, camera.fy * inv_z, dv_dz,   //
+      0, 0, 0;
+  if (rows == 3) a.row(2) << camera.fx * inv_z, 0, du_dz + camera.bf * inv_z2;
+  return a;
+}
+
 bool LinearizeObservation(const CameraIntrinsics& camera, const SE3d& cam_from_world,
                           const PoseObservation& obs, bool with_jacobian, Linearization* out) {
-  const Eigen::Vector3d p = cam_from_world * obs.point_world;
-  if (!Residual(camera, p, obs, out)) return false;
-  if (with_jacobian) Jacobian(camera, p, out->rows, &out->jacobian);
+  return LinearizeCameraPoint(camera, cam_from_world * obs.point_world, obs.pixel, obs.right_u, with_jacobian, out);
+}
+
+bool LinearizeCameraPoint(const CameraIntrinsics& camera, const Eigen::Vector3d& point_cam,
+                          const Eigen::Vector2d& pixel, double right_u, bool with_jacobian, Linearization* out) {
+  if (!Residual(camera, point_cam, pixel, right_u, out)) return false;
+  if (with_jacobian) Jacobian(camera, point_cam, out->rows, &out->jacobian);
   return true;
 }
 
