@@ -66,16 +66,16 @@ struct ObservationLinearization {
 bool LinearizeObservation(const CameraIntrinsics& camera, const SE3d& cam_from_world,
                           const PoseObservation& observation, bool with_jacobian,
                           ObservationLinearization* out);
-// d(u, v, u_right) / d(point_cam), the projection's derivative at a
-// camera-frame point in front of the camera (the residual's is its
-// negative); row 2 is zero unless rows == 3.
-Eigen::Matrix3d ProjectionJacobian(const CameraIntrinsics& camera, const Eigen::Vector3d& point_cam, int rows);
 // The same for a point already in the camera frame (cam_from_world *
 // point_world): bundle adjustment turns each pose into a matrix once per
 // pass instead of rotating by its quaternion per observation.
 bool LinearizeCameraPoint(const CameraIntrinsics& camera, const Eigen::Vector3d& point_cam,
                           const Eigen::Vector2d& pixel, double right_u, bool with_jacobian,
                           ObservationLinearization* out);
+// d(u, v, u_right) / d(point_cam), the projection's derivative at a
+// camera-frame point in front of the camera (the residual's is its
+// negative); row 2 is zero unless rows == 3.
+Eigen::Matrix3d ProjectionJacobian(const CameraIntrinsics& camera, const Eigen::Vector3d& point_cam, int rows);
 
 // Throws dlslam::Error when options are invalid. With fewer than 3
 // observations the pose is returned unchanged and all are flagged outliers.
