@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -199,6 +200,41 @@ TEST_F(RunCliTest, ReportHasTheDynamicObject) {
   EXPECT_DOUBLE_EQ(precision, tp / (tp + fp));
   EXPECT_DOUBLE_EQ(recall, tp / (tp + fn));
   EXPECT_TRUE(j.at("timing_ms").contains("geometry"));
+}
+
+TEST_F(RunCliTest, RealtimePlaysAtTheCamerasPaceAndReportsLatency) {
+  // 40 frames at 30 Hz, played at twice the camera's speed: at least 0.65 s.
+  const auto start = std::chrono::steady_clock::now();
+  const CliRun run = Cli(RunArgs(Walk(), "--mode orb --realtime=2 --report " + Quoted(out_ / "r.json")));
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_GE(wall_s, 39.0 / 30.0 / 2.0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("latency from arrival to pose"));
+  const nlohmann::json j = Report("r.json");
+  EXPECT_EQ(j.at("realtime_rate"), 2.0);
+  const nlohmann::json& latency = j.at("timing_ms").at("latency");
+  EXPECT_GE(latency.at("median").get<double>(), 0.0);
+  EXPECT_EQ(j.at("frames_tracked").get<int>() + j.at("frames_coasted").get<int>() +
+                j.at("pose_sources").at("none").get<int>(),
+            40);
+}
+
+TEST_F(RunCliTest, RealtimeDropsTheFramesItHadNoTimeFor) {
+  // At 100x the camera's speed a frame arrives every 0.3 ms: most are
+  // overwritten while one is tracked, and have no pose.
+  const CliRun run = Cli(RunArgs(Walk(), "--mode orb --realtime=100 --report " + Quoted(out_ / "r.json")));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json j = Report("r.json");
+  const int dropped = j.at("frames_dropped");
+  EXPECT_GT(dropped, 10) << run.output;
+  EXPECT_EQ(j.at("frames"), 40);
+  EXPECT_EQ(j.at("frames_tracked").get<int>() + j.at("frames_coasted").get<int>() + j.at("frames_lost").get<int>() +
+                j.at("frames_waiting").get<int>() + dropped,
+            40);
+  std::ifstream sources(out_ / "t.sources.txt");
+  int none = 0;
+  for (std::string line; std::getline(sources, line);) none += line.find(" none") != std::string::npos;
+  EXPECT_GE(none, dropped);
 }
 
 TEST_F(RunCliTest, DenseMapIsAPlyWithoutThePeople) {

@@ -46,6 +46,7 @@ struct BenchArgs {
   bool sequential = false;
   int segment_every = 1;              // modes semantic, full: segment every k-th frame
   bool async_masks = false;           // modes semantic, full: never wait for the network
+  double realtime_rate = 0.0;         // --realtime[=RATE]: frames arrive as from a live camera; 0 = as fast as possible
   fs::path semantic_model;            // "" = the shipped network
   fs::path config;                    // every option from one YAML file; bench's flags override it
   std::set<std::string> given;        // the flags given on the command line
@@ -143,6 +144,11 @@ std::string Table(const std::vector<ModeRun>& runs, double budget_ms) {
   table += row("frames without a pose", [](const ModeRun& r) {
     return fmt::format("{}", r.outcome.stats.frames_without_pose());
   });
+  if (std::any_of(runs.begin(), runs.end(), [](const ModeRun& r) { return r.outcome.stats.frames_dropped > 0; })) {
+    table += row("of those: dropped (live)", [](const ModeRun& r) {
+      return fmt::format("{}", r.outcome.stats.frames_dropped);
+    });
+  }
   table += row("wall time [s]", [](const ModeRun& r) { return fmt::format("{:.1f}", r.wall_s); });
   table += row("real-time factor", [](const ModeRun& r) {
     return r.wall_s > 0 && r.sequence_s > 0 ? fmt::format("{:.2f}x", r.sequence_s / r.wall_s) : std::string("-");
@@ -170,6 +176,7 @@ nlohmann::ordered_json Json(const BenchArgs& args, const fs::path& sequence, con
   j["threads"] = args.sequential ? "sequential" : "threaded";
   j["segment_every"] = args.segment_every;
   j["async_masks"] = args.async_masks;
+  j["realtime_rate"] = args.realtime_rate;
   j["config"] = args.config.string();  // "" = the defaults; its values under the flags given
   j["budget_ms"] = budget_ms;
   j["cores"] = std::thread::hardware_concurrency();
@@ -184,6 +191,7 @@ nlohmann::ordered_json Json(const BenchArgs& args, const fs::path& sequence, con
     m["frames_coasted"] = r.outcome.stats.frames_coasted;
     m["frames_new_map"] = r.outcome.stats.frames_new_map;
     m["frames_without_pose"] = r.outcome.stats.frames_without_pose();
+    m["frames_dropped"] = r.outcome.stats.frames_dropped;
     m["maps_started"] = r.outcome.stats.maps_started;
     m["maps_merged"] = r.outcome.stats.maps_merged;
     m["wall_s"] = r.wall_s;
@@ -235,6 +243,7 @@ void RunBench(const BenchArgs& args) {
     run.sequential = args.sequential;
     run.segment_every = args.segment_every;
     run.async_masks = args.async_masks;
+    run.realtime_rate = args.realtime_rate;
     run.semantic_model = args.semantic_model;
     run.config = args.config;
     run.given = args.given;
@@ -279,6 +288,10 @@ void AddBenchCommand(CLI::App& app) {
       ->check(WholeNumber(1, 100));
   cmd->add_flag("--async-masks", args->async_masks,
                "Modes semantic, full: never wait for the network; use its newest masks, carried to each frame");
+  cmd->add_flag("--realtime{1}", args->realtime_rate,
+                "Play the frames as a live camera delivers them (--realtime=RATE: at RATE x its speed): stage "
+                "'latency' (arrival to pose) and frames dropped for want of time")
+      ->check(RealNumber(0.01, 100));
   cmd->add_option("--semantic-model", args->semantic_model, "Segmentation network (ONNX); default: the shipped one");
   cmd->add_option("--config", args->config,
                   "Every option of every module from one YAML file (dlslam config dump); flags given here override it");

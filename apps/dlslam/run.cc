@@ -20,6 +20,7 @@
 #include "live_view.h"
 #include "dlslam/io/file_util.h"
 #include "dlslam/io/frame_prefetcher.h"
+#include "dlslam/io/live_playback.h"
 #include "dlslam/io/sequence.h"
 #include "dlslam/io/trajectory_io.h"
 #include "dlslam/synth/actors.h"
@@ -176,9 +177,13 @@ RunOutcome RunSequence(const RunArgs& args) {
   // Frames are read ahead in a thread of their own, as a camera delivers them.
   const Stopwatch loop_watch;
   io::FramePrefetcher frames(sequence, n);
-  // The network starts on the next frame while this one is tracked.
+  const auto timestamp_of = [&](std::size_t i) { return sequence.frames()[i].timestamp(); };
+  std::optional<io::LivePlayback> live_camera;
+  if (args.realtime_rate > 0) live_camera.emplace(args.realtime_rate, timestamp_of(0));
+  // The network starts on the next frame while this one is tracked (not
+  // live: a live camera has not delivered it yet).
   const auto segment_ahead = [&](const std::optional<io::FramePrefetcher::Item>& item) {
-    if (item && item->result.ok() && !prior_source) {
+    if (item && item->result.ok() && !prior_source && !live_camera) {
       slam.SegmentAhead(item->result.frame->color, item->result.frame->timestamp);
     }
   };
@@ -187,6 +192,13 @@ RunOutcome RunSequence(const RunArgs& args) {
   while (std::optional<io::FramePrefetcher::Item> item = std::exchange(next, frames.Next())) {
     const std::size_t i = item->index;
     segment_ahead(next);
+    if (live_camera) {
+      if (i + 1 < n && live_camera->Overwritten(timestamp_of(i + 1))) {
+        slam.MarkDropped(timestamp_of(i));
+        continue;
+      }
+      live_camera->WaitForArrival(timestamp_of(i));
+    }
     const io::FrameLoadResult& loaded = item->result;
     if (!loaded.ok()) {
       spdlog::warn("frame {} lost: {}", i, loaded.error);
@@ -204,6 +216,7 @@ RunOutcome RunSequence(const RunArgs& args) {
       };
     }
     const TrackingResult r = slam.TrackRgbd(f.color, f.depth, f.timestamp, inputs);
+    if (live_camera) source_timings.Add("latency", live_camera->MsSinceArrival(timestamp_of(i)));
     if (r.new_keyframe && options.keep_keyframe_images && !f.mask.empty()) {
       keyframe_people[f.timestamp] = ClassMaskFromLabels(f.mask, synth::kClassPerson);
     }
@@ -262,16 +275,21 @@ RunOutcome RunSequence(const RunArgs& args) {
   }
   const auto& t = stats.timing_ms;
   spdlog::info("posed {}/{} frames (tracked {}, relocalized {}, coasted {}, in a new map {}), without a pose {} (lost "
-               "{}, before initialisation {}), {} loops closed, {} new maps ({} merged), {} keyframes, {} map points, "
+               "{}, before initialisation {}{}), {} loops closed, {} new maps ({} merged), {} keyframes, {} map points, "
                "{} jumps refused",
                stats.frames_posed(), stats.frames, stats.frames_tracked_source(), stats.relocalizations,
                stats.frames_coasted, stats.frames_new_map, stats.frames_without_pose(), stats.frames_lost,
-               stats.frames_waiting, stats.loop.loops_closed, stats.maps_started, stats.maps_merged, stats.keyframes,
+               stats.frames_waiting,
+               live_camera ? fmt::format(", dropped by the live camera {}", stats.frames_dropped) : std::string(), stats.loop.loops_closed, stats.maps_started, stats.maps_merged, stats.keyframes,
                stats.map_points, stats.jumps_refused);
   if (t.count("frame_total")) {
     spdlog::info("time per frame: median {:.1f} ms, p95 {:.1f} ms (ORB {:.1f} ms, tracking {:.1f} ms)",
                  t.at("frame_total").median, t.at("frame_total").p95, t.at("orb_extraction").median,
                  t.at("tracking").median);
+  }
+  if (t.count("latency")) {
+    spdlog::info("live at {}x the camera's rate: latency from arrival to pose median {:.1f} ms, p95 {:.1f} ms",
+                 args.realtime_rate, t.at("latency").median, t.at("latency").p95);
   }
   LogDynamicSummary(stats);
   if (evaluation) {
@@ -303,6 +321,8 @@ RunOutcome RunSequence(const RunArgs& args) {
     nlohmann::ordered_json report = MakeRunReport(stats, evaluation);
     if (dense_map) report["dense_map"] = DenseMapReport(*dense_map);
     report["config_file"] = args.config.empty() ? nullptr : nlohmann::ordered_json(args.config.string());
+    // 0: as fast as possible; else the live camera's speed (--realtime).
+    report["realtime_rate"] = args.realtime_rate;
     report["options"] = config::ConfigJson(run_options);
     if (!args.load_map.empty() || map_save_ms) {
       nlohmann::ordered_json m;
@@ -390,6 +410,11 @@ void AddRunCommand(CLI::App& app) {
                 "each frame with the camera motion and depth");
   cmd->add_flag("--sequential", args->sequential,
                 "Run local mapping inline: deterministic, reproducible bit for bit");
+  cmd->add_flag("--realtime{1}", args->realtime_rate,
+                "Play the sequence as a live camera delivers it: each frame at its timestamp (--realtime=RATE: "
+                "at RATE x the camera's speed); a frame the system had no time for is overwritten by the next "
+                "(dropped, no pose). Reports the latency from arrival to pose")
+      ->check(RealNumber(0.01, 100));
   cmd->add_flag("--no-relocalization", args->no_relocalization, "Do not relocalize a lost camera");
   cmd->add_flag("--no-loop", args->no_loop, "Do not close loops (for comparisons)");
   cmd->add_flag("--no-movables", args->no_movables,

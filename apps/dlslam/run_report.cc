@@ -143,6 +143,7 @@ nlohmann::ordered_json MakeRunReport(const RunStats& stats, const std::optional<
                                    {"keypoints_masked", stats.keyframe_keypoints_masked_late}};
   j["loops_closed"] = stats.loop.loops_closed;
   j["frames_waiting"] = stats.frames_waiting;
+  j["frames_dropped"] = stats.frames_dropped;
   j["keyframes"] = stats.keyframes;
   j["map_points"] = stats.map_points;
   j["local_mapping"] = {{"keyframes_processed", stats.mapping.keyframes_processed},

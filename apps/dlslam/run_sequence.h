@@ -34,6 +34,10 @@ struct RunArgs {
   int segment_every = 1;                   // segment every k-th frame
   bool async_masks = false;                // --async-masks: never wait for the network
   bool sequential = false;
+  // --realtime[=RATE]: play the sequence as a live camera delivers it
+  // (io::LivePlayback: each frame at its timestamp, at RATE x the camera's
+  // speed, frames the system had no time for dropped); 0 = as fast as possible.
+  double realtime_rate = 0.0;
   bool no_relocalization = false;  // --no-relocalization
   bool no_loop = false;            // --no-loop
   bool no_movables = false;        // --no-movables

@@ -457,6 +457,12 @@ void SlamSystem::MarkLost(double timestamp) {
   if (last_state_ != TrackingState::kNotInitialized) last_state_ = TrackingState::kLost;
 }
 
+void SlamSystem::MarkDropped(double timestamp) {
+  ++counts_.frames;
+  ++counts_.frames_dropped;
+  sources_.push_back({timestamp, PoseSource::kNone});
+}
+
 void SlamSystem::KeepKeyFrameImages(KeyFrameId id, double timestamp, const cv::Mat& colour, const cv::Mat& depth,
                                     const cv::Mat& removed) {
   // Forget culled keyframes first (local mapping culls in its thread).

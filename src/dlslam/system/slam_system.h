@@ -124,6 +124,7 @@ struct RunStats {
   int maps_merged = 0;      // of those, merged into an older map
   int frames_lost = 0;      // not tracked after initialisation, or unreadable
   int frames_waiting = 0;   // before initialisation
+  int frames_dropped = 0;   // live playback: overwritten by the next frame before the system was free (MarkDropped)
   int frames_extracted_outside_prior = 0;  // ORB extraction left the prior's removal out (extract_outside_prior)
   int frames_reextracted = 0;  // ORB features extracted again outside the removed regions
   int relocalizations = 0;  // lost -> tracked again through relocalization
@@ -145,7 +146,7 @@ struct RunStats {
   std::map<std::string, TimingSummary> timing_ms;  // per stage
 
   int frames_posed() const { return frames_tracked + frames_coasted; }
-  int frames_without_pose() const { return frames_lost + frames_waiting; }
+  int frames_without_pose() const { return frames_lost + frames_waiting + frames_dropped; }
   // PoseSource::kTracked: tracked, neither relocalized nor in a new map.
   int frames_tracked_source() const { return frames_tracked - relocalizations - frames_new_map; }
 };
@@ -194,6 +195,10 @@ class SlamSystem {
 
   // A frame that could not be read counts as lost.
   void MarkLost(double timestamp);
+  // A frame a live camera delivered while the system was busy, replaced by
+  // the next one before the system was free (io::LivePlayback): no pose;
+  // tracking goes on from the next frame with the motion model.
+  void MarkDropped(double timestamp);
   // Finishes the semantic thread, local mapping, then loop closing (and a
   // running global bundle adjustment). Called by the destructor too.
   void Shutdown();
