@@ -369,6 +369,9 @@ void VisitOptions(RunOptions& options, OptionVisitor& v) {
   Section(v, "dynamic", "moving objects: modes, geometry, fusion", s.dynamic);
   Section(v, "semantic", "the semantic thread", s.semantic);
   v.Value("sequential", s.sequential, {"", "local mapping inline: reproducible bit for bit"});
+  v.Value("max_mapping_lag_frames", s.max_mapping_lag_frames,
+          {"frames", "threaded: a frame waits for local mapping to finish keyframes this much older (0 = never)"});
+  v.Value("max_mapping_wait_ms", s.max_mapping_wait_ms, {"ms", "... at most this long"});
   v.Value("relocalization", s.relocalization, {"", "relocalize a lost camera"});
   v.Value("loop_closing", s.loop_closing, {"", "close loops"});
   v.Value("merge_every_frames", s.merge_every_frames, {"frames", "in a new map: try to merge it every k-th frame"});

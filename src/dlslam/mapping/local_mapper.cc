@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "dlslam/util/check.h"
 #include "dlslam/util/thread_priority.h"
 
@@ -34,13 +36,22 @@ void LocalMapper::Start() {
   thread_ = std::thread([this] { Run(); });
 }
 
-void LocalMapper::Enqueue(KeyFrameId keyframe) {
+std::uint64_t LocalMapper::Enqueue(KeyFrameId keyframe) {
+  ++enqueued_;
   if (!thread_.joinable()) {
     ProcessAndHandOver(keyframe);
-    return;
+    std::lock_guard lock(processed_mutex_);
+    processed_ = enqueued_;
+    return enqueued_;
   }
   queue_.Push(keyframe);
   keyframe_queued_ = true;
+  return enqueued_;
+}
+
+bool LocalMapper::WaitForProcessed(std::uint64_t ticket, std::chrono::milliseconds timeout) {
+  std::unique_lock lock(processed_mutex_);
+  return processed_changed_.wait_for(lock, timeout, [&] { return processed_ >= ticket; });
 }
 
 PauseGate::Hold LocalMapper::Pause() { return pause_gate_.Pause(); }
@@ -61,6 +72,7 @@ void LocalMapper::Stop() {
 void LocalMapper::Run() {
   LowerBackgroundPriority(options_.thread_nice, "local mapping");
   while (const std::optional<KeyFrameId> keyframe = queue_.Pop()) {
+    ++taken_;
     try {
       ProcessAndHandOver(*keyframe);
     } catch (const std::exception& e) {
@@ -68,7 +80,16 @@ void LocalMapper::Run() {
       // as tracking made it.
       spdlog::warn("local mapping of keyframe {} failed: {}", *keyframe, e.what());
     }
+    MarkProcessed();
   }
+}
+
+void LocalMapper::MarkProcessed() {
+  {
+    std::lock_guard lock(processed_mutex_);
+    processed_ = std::max(processed_, taken_);
+  }
+  processed_changed_.notify_all();
 }
 
 LocalMappingStats LocalMapper::stats() const {

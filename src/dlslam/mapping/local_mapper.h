@@ -7,6 +7,9 @@
 // owns no map state of its own.
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -92,8 +95,14 @@ class LocalMapper {
 
   // Starts the thread. Without it, Enqueue processes inline (sequential mode).
   void Start();
-  // Hands a new keyframe over; blocks while the queue is full.
-  void Enqueue(KeyFrameId keyframe);
+  // Hands a new keyframe over; blocks while the queue is full. Returns how
+  // many keyframes were handed over so far, this one included (its ticket
+  // for WaitForProcessed).
+  std::uint64_t Enqueue(KeyFrameId keyframe);
+  // Blocks until the first `ticket` keyframes handed over are processed (at
+  // once when they are, or without the thread), at most `timeout`. Returns
+  // whether they are.
+  bool WaitForProcessed(std::uint64_t ticket, std::chrono::milliseconds timeout);
   // Finishes the queued keyframes, then joins the thread.
   void Stop();
   // Holds local mapping between two keyframes for as long as the returned
@@ -111,6 +120,8 @@ class LocalMapper {
   void ProcessAndHandOver(KeyFrameId keyframe);
   void Process(KeyFrameId keyframe);
   void Run();
+  // The keyframes taken so far are finished: wakes WaitForProcessed.
+  void MarkProcessed();
 
   LocalMapperOptions options_;
   Map* map_;
@@ -120,6 +131,11 @@ class LocalMapper {
   std::atomic<bool> keyframe_queued_{false};  // set by Enqueue, cleared before each bundle adjustment
   bool threaded_ = false;                      // Start was called
   int bundles_yielded_in_a_row_ = 0;           // the mapper thread's own
+  std::uint64_t enqueued_ = 0;                 // Enqueue's caller's own
+  std::mutex processed_mutex_;
+  std::condition_variable processed_changed_;
+  std::uint64_t processed_ = 0;
+  std::uint64_t taken_ = 0;  // the mapper thread's own: keyframes taken from the queue  // keyframes taken from the queue and finished (or culled meanwhile, or failed)
   std::thread thread_;
   PauseGate pause_gate_;  // a keyframe's processing is one step
   mutable std::mutex stats_mutex_;

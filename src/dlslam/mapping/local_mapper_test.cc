@@ -111,6 +111,40 @@ TEST(LocalMapper, BundleAdjustmentYieldsToAQueuedKeyFrame) {
   EXPECT_EQ(RunSequence(false, true, 200).stats.bundles_yielded, 0);  // sequential: never
 }
 
+TEST(LocalMapper, WaitForProcessedReturnsOnceTheKeyFramesAreDone) {
+  using std::chrono::milliseconds;
+  auto scene = testing::LandmarkScene::Room(6000, 8);
+  Map map;
+  Tracker tracker(TrackerOptions{}, &map);
+  LocalMapper mapper(LocalMapperOptions{}, &map);
+  mapper.Start();
+  std::uint64_t ticket = 0;
+  {
+    const PauseGate::Hold hold = mapper.Pause();  // nothing is processed meanwhile
+    for (int i = 0; i < 300 && ticket < 2; ++i) {
+      const TrackingResult r = tracker.Track(scene.MakeFrame(CamFromWorld(i), i / 30.0, 500 + i, 1.0));
+      if (r.new_keyframe) ticket = mapper.Enqueue(r.reference_keyframe);
+    }
+    ASSERT_EQ(ticket, 2u);  // tickets count the keyframes handed over
+    EXPECT_FALSE(mapper.WaitForProcessed(1, milliseconds(20)));  // held: times out
+  }
+  EXPECT_TRUE(mapper.WaitForProcessed(2, milliseconds(60000)));
+  EXPECT_EQ(mapper.stats().keyframes_processed, 2);
+  EXPECT_FALSE(mapper.WaitForProcessed(3, milliseconds(0)));  // not handed over yet
+  mapper.Stop();
+}
+
+TEST(LocalMapper, InlineKeyFramesAreProcessedWhenEnqueued) {
+  auto scene = testing::LandmarkScene::Room(6000, 8);
+  Map map;
+  Tracker tracker(TrackerOptions{}, &map);
+  LocalMapper mapper(LocalMapperOptions{}, &map);  // not started: sequential
+  const TrackingResult r = tracker.Track(scene.MakeFrame(CamFromWorld(0), 0.0, 500, 1.0));
+  ASSERT_TRUE(r.new_keyframe);
+  EXPECT_EQ(mapper.Enqueue(r.reference_keyframe), 1u);
+  EXPECT_TRUE(mapper.WaitForProcessed(1, std::chrono::milliseconds(0)));
+}
+
 TEST(LocalMapper, TriangulatesWhereDepthEnds) {
   // A 4.5 m sensor range: the far wall (5 m) has no depth; its points come
   // from triangulation. Fewer points with depth make every pose ~1 cm worse

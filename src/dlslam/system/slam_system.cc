@@ -135,6 +135,10 @@ void SystemOptions::Check() const {
                "SystemOptions::reextract_removed_share {} outside (0, 1]", reextract_removed_share);
   DLSLAM_CHECK(static_orb_removed_share >= 0 && static_orb_removed_share <= 1,
                "SystemOptions::static_orb_removed_share {} outside [0, 1]", static_orb_removed_share);
+  DLSLAM_CHECK(max_mapping_lag_frames >= 0, "SystemOptions::max_mapping_lag_frames {} must be >= 0",
+               max_mapping_lag_frames);
+  DLSLAM_CHECK(max_mapping_wait_ms >= 0 && max_mapping_wait_ms <= 60000,
+               "SystemOptions::max_mapping_wait_ms {} outside [0, 60000]", max_mapping_wait_ms);
   DLSLAM_CHECK(merge_every_frames >= 1 && merge_every_frames <= 100000,
                "SystemOptions::merge_every_frames {} outside [1, 100000]", merge_every_frames);
   DLSLAM_CHECK(merge_agreement_m > 0 && merge_agreement_deg > 0,
@@ -199,6 +203,7 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     counts_.frames_segmented_ahead += masks.segmented_ahead;
     inputs.semantic_prior = masks.prior;
   }
+  BoundMappingLag(frame_id);  // the network works on this frame meanwhile
   const DynamicPrior prior = dynamic_.TakePrior(inputs, depth);
   Stopwatch watch;
   const features::OrbExtractor* first = nullptr;
@@ -358,8 +363,20 @@ void SlamSystem::KeyFrameMade(KeyFrameId id, double timestamp, const cv::Mat& co
                               const cv::Mat& removed) {
   if (options_.keep_keyframe_images) KeepKeyFrameImages(id, timestamp, colour, depth, removed);
   const Stopwatch watch;
-  mapper_.Enqueue(id);  // blocks only while the queue is full
+  const std::uint64_t ticket = mapper_.Enqueue(id);  // blocks only while the queue is full
+  if (!options_.sequential && options_.max_mapping_lag_frames > 0) unmapped_.push_back({counts_.frames, ticket});
   timings_.Add("keyframe_handover", watch.ElapsedMs());
+}
+
+void SlamSystem::BoundMappingLag(long frame_id) {
+  if (options_.sequential || options_.max_mapping_lag_frames <= 0) return;
+  const Stopwatch watch;
+  while (!unmapped_.empty() && frame_id - unmapped_.front().frame >= options_.max_mapping_lag_frames) {
+    // A loop correction pauses local mapping for longer: tracking goes on then.
+    mapper_.WaitForProcessed(unmapped_.front().ticket, std::chrono::milliseconds(options_.max_mapping_wait_ms));
+    unmapped_.pop_front();
+  }
+  timings_.Add("mapping_wait", watch.ElapsedMs());
 }
 
 void SlamSystem::ReleaseHeldKeyFrame(bool wait) {
