@@ -49,7 +49,7 @@ std::uint64_t LocalMapper::Enqueue(KeyFrameId keyframe) {
   return enqueued_;
 }
 
-bool LocalMapper::WaitForProcessed(std::uint64_t ticket, std::chrono::milliseconds timeout) {
+bool LocalMapper::WaitForProcessed(std::uint64_t ticket, std::chrono::nanoseconds timeout) {
   std::unique_lock lock(processed_mutex_);
   return processed_changed_.wait_for(lock, timeout, [&] { return processed_ >= ticket; });
 }

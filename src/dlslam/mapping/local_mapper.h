@@ -102,7 +102,7 @@ class LocalMapper {
   // Blocks until the first `ticket` keyframes handed over are processed (at
   // once when they are, or without the thread), at most `timeout`. Returns
   // whether they are.
-  bool WaitForProcessed(std::uint64_t ticket, std::chrono::milliseconds timeout);
+  bool WaitForProcessed(std::uint64_t ticket, std::chrono::nanoseconds timeout);
   // Finishes the queued keyframes, then joins the thread.
   void Stop();
   // Holds local mapping between two keyframes for as long as the returned

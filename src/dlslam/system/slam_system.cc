@@ -187,6 +187,7 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
   CheckColour(colour, timestamp);
   ++counts_.frames;
   Stopwatch total;
+  frame_started_ = std::chrono::steady_clock::now();
   DynamicInputs inputs = dynamic;
   const long frame_id = counts_.frames;
   SemanticFeed::FrameMasks masks;
@@ -203,7 +204,7 @@ TrackingResult SlamSystem::TrackRgbd(const cv::Mat& colour, const cv::Mat& depth
     counts_.frames_segmented_ahead += masks.segmented_ahead;
     inputs.semantic_prior = masks.prior;
   }
-  BoundMappingLag(frame_id);  // the network works on this frame meanwhile
+  BoundMappingLag(frame_id, timestamp);  // the network works on this frame meanwhile
   const DynamicPrior prior = dynamic_.TakePrior(inputs, depth);
   Stopwatch watch;
   const features::OrbExtractor* first = nullptr;
@@ -364,16 +365,27 @@ void SlamSystem::KeyFrameMade(KeyFrameId id, double timestamp, const cv::Mat& co
   if (options_.keep_keyframe_images) KeepKeyFrameImages(id, timestamp, colour, depth, removed);
   const Stopwatch watch;
   const std::uint64_t ticket = mapper_.Enqueue(id);  // blocks only while the queue is full
-  if (!options_.sequential && options_.max_mapping_lag_frames > 0) unmapped_.push_back({counts_.frames, ticket});
+  if (!options_.sequential && options_.max_mapping_lag_frames > 0) {
+    unmapped_.push_back({counts_.frames, timestamp, frame_started_, ticket});
+  }
   timings_.Add("keyframe_handover", watch.ElapsedMs());
 }
 
-void SlamSystem::BoundMappingLag(long frame_id) {
+void SlamSystem::BoundMappingLag(long frame_id, double timestamp) {
   if (options_.sequential || options_.max_mapping_lag_frames <= 0) return;
   const Stopwatch watch;
   while (!unmapped_.empty() && frame_id - unmapped_.front().frame >= options_.max_mapping_lag_frames) {
-    // A loop correction pauses local mapping for longer: tracking goes on then.
-    mapper_.WaitForProcessed(unmapped_.front().ticket, std::chrono::milliseconds(options_.max_mapping_wait_ms));
+    const UnmappedKeyFrame& keyframe = unmapped_.front();
+    // Only time the camera would have left: frames played faster than their
+    // timestamps (a live camera paces them itself). A loop correction pauses
+    // local mapping for longer than the bound: tracking goes on then.
+    const double camera_ms = (timestamp - keyframe.timestamp) * 1e3;
+    const double spent_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - keyframe.frame_started).count();
+    const double wait_ms = std::min<double>(options_.max_mapping_wait_ms, camera_ms - spent_ms);
+    if (wait_ms > 0) {
+      mapper_.WaitForProcessed(keyframe.ticket, std::chrono::microseconds(std::lround(wait_ms * 1e3)));
+    }
     unmapped_.pop_front();
   }
   timings_.Add("mapping_wait", watch.ElapsedMs());

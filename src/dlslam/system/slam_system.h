@@ -11,6 +11,7 @@
 //   slam.Shutdown();
 //   io::WriteTumTrajectory("traj.txt", slam.CameraTrajectory());
 
+#include <chrono>
 #include <deque>
 #include <functional>
 #include <map>
@@ -68,18 +69,21 @@ struct SystemOptions {
   double static_orb_removed_share = 0.05;
   // Run local mapping inline after each keyframe instead of in its thread.
   bool sequential = false;
-  // Threaded: a frame waits, at most max_mapping_wait_ms, until local
-  // mapping has finished the keyframes made this many frames or more before
-  // it (0 = never). A mapper left behind leaves tracking on points and poses
-  // its bundle adjustment has not refined yet, for frames on end: run faster
-  // than the camera on 2 cores, tracking and the network starve it (Bonn
-  // full, 10 interleaved runs each: local mapping 55 ms a keyframe wall, ATE
-  // 0.0130-0.0160 m, median 0.0150, without the wait; 35 ms and
-  // 0.0127-0.0142 m, median 0.0133, with 1 frame / 15 ms; real-time factor
-  // 2.20 -> 2.04x, frame p95 21 -> 28 ms, median unchanged; sequential:
-  // 0.0125 m). Waiting only for its new points (before the bundle
-  // adjustment) gave nothing (0.0143 m). Live at 30 Hz (--realtime) the
-  // mapper mostly finishes within a frame and this rarely waits.
+  // Threaded: a frame waits until local mapping has finished the keyframes
+  // made this many frames or more before it (0 = never), for at most
+  // max_mapping_wait_ms and only for time the camera would have left it: as
+  // long as frames are tracked faster than their timestamps go. A mapper
+  // left behind leaves tracking on points and poses its bundle adjustment
+  // has not refined yet, for frames on end: run faster than the camera on 2
+  // cores, tracking and the network starve it (Bonn full, 10 interleaved
+  // runs each: local mapping 55 ms a keyframe wall, ATE 0.0130-0.0160 m,
+  // median 0.0150, without the wait; 35 ms and 0.0127-0.0142 m, median
+  // 0.0133, waiting up to 15 ms for the keyframe of the frame before;
+  // real-time factor 2.20 -> 2.04x, frame p95 21 -> 28 ms, median
+  // unchanged; sequential: 0.0125 m). Waiting only for its new points
+  // (before the bundle adjustment) gave nothing (0.0143 m). Live at 30 Hz
+  // (--realtime) the tracker idles between frames, mapping keeps up, and
+  // this never waits (it cost 2-4 ms of latency there before it looked at the timestamps).
   int max_mapping_lag_frames = 1;
   int max_mapping_wait_ms = 15;
   // Relocalize a lost camera against the map by bag of words (loads the
@@ -296,7 +300,7 @@ class SlamSystem {
   // after keyframe_mask_max_wait_frames, once they are.
   void ReleaseHeldKeyFrame(bool wait);
   // Waits for local mapping when it lags (SystemOptions::max_mapping_lag_frames).
-  void BoundMappingLag(long frame_id);
+  void BoundMappingLag(long frame_id, double timestamp);
   // The keyframe enters the map: images kept, handed to local mapping.
   void KeyFrameMade(KeyFrameId id, double timestamp, const cv::Mat& colour, const cv::Mat& depth,
                     const cv::Mat& removed);
@@ -320,12 +324,16 @@ class SlamSystem {
   std::map<KeyFrameId, KeyFrameImages> keyframe_images_;
   std::vector<FrameRecord> tracked_;
   // Keyframes handed to local mapping and not known to be finished: the frame
-  // that made each, and its LocalMapper ticket.
+  // that made each (number, timestamp, when its tracking began), and its
+  // LocalMapper ticket.
   struct UnmappedKeyFrame {
     long frame = 0;
+    double timestamp = 0.0;
+    std::chrono::steady_clock::time_point frame_started;
     std::uint64_t ticket = 0;
   };
   std::deque<UnmappedKeyFrame> unmapped_;
+  std::chrono::steady_clock::time_point frame_started_;  // of the frame being tracked
   std::vector<FramePoseSource> sources_;
   RunStats counts_;
   TrackingState last_state_ = TrackingState::kNotInitialized;  // for the state log
