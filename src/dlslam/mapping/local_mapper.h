@@ -134,8 +134,8 @@ class LocalMapper {
   std::uint64_t enqueued_ = 0;                 // Enqueue's caller's own
   std::mutex processed_mutex_;
   std::condition_variable processed_changed_;
-  std::uint64_t processed_ = 0;
-  std::uint64_t taken_ = 0;  // the mapper thread's own: keyframes taken from the queue  // keyframes taken from the queue and finished (or culled meanwhile, or failed)
+  std::uint64_t processed_ = 0;  // keyframes finished (or culled while queued, or failed): WaitForProcessed
+  std::uint64_t taken_ = 0;      // the mapper thread's own: keyframes taken from the queue
   std::thread thread_;
   PauseGate pause_gate_;  // a keyframe's processing is one step
   mutable std::mutex stats_mutex_;
