@@ -101,6 +101,8 @@ TEST_F(RunCliTest, EveryBadArgumentIsOneErrorLineAndExitStatusOne) {
       {"vocab train --images . --out v.dlv --threads 100000", "--threads: expected a whole number in 0..256"},
       {RunArgs(Walk(), "--view=70000"), "--view: expected a whole number in 1..65535, got '70000'"},
       {RunArgs(Walk(), "--view-linger -1"), "--view-linger: expected a number in [0, 86400], got '-1'"},
+      {RunArgs(Walk(), "--realtime=0"), "--realtime: expected a number in [0.01, 100], got '0'"},
+      {"bench --realtime=abc", "--realtime: expected a number in [0.01, 100], got 'abc'"},
       {RunArgs(Walk(), "--removal-images-every 0"), "--removal-images-every: expected a whole number in 1..1000000, got '0'"},
       {RunArgs(Walk(), "--removal-images /dev/null"), "--removal-images /dev/null: exists and is not a folder"},
       {RunArgs(Walk(), "--config /nonexistent/c.yaml"), "/nonexistent/c.yaml: file not found"},

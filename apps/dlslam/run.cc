@@ -280,8 +280,9 @@ RunOutcome RunSequence(const RunArgs& args) {
                stats.frames_posed(), stats.frames, stats.frames_tracked_source(), stats.relocalizations,
                stats.frames_coasted, stats.frames_new_map, stats.frames_without_pose(), stats.frames_lost,
                stats.frames_waiting,
-               live_camera ? fmt::format(", dropped by the live camera {}", stats.frames_dropped) : std::string(), stats.loop.loops_closed, stats.maps_started, stats.maps_merged, stats.keyframes,
-               stats.map_points, stats.jumps_refused);
+               live_camera ? fmt::format(", dropped by the live camera {}", stats.frames_dropped) : std::string(),
+               stats.loop.loops_closed, stats.maps_started, stats.maps_merged, stats.keyframes, stats.map_points,
+               stats.jumps_refused);
   if (t.count("frame_total")) {
     spdlog::info("time per frame: median {:.1f} ms, p95 {:.1f} ms (ORB {:.1f} ms, tracking {:.1f} ms)",
                  t.at("frame_total").median, t.at("frame_total").p95, t.at("orb_extraction").median,

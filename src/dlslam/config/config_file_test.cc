@@ -114,6 +114,8 @@ TEST_F(ConfigFileTest, MistakesAreErrorsWithTheirLine) {
   EXPECT_THAT(Error("tracker:\n  new_map_after_lost_frames: -1\n"),
               HasSubstr("c.yaml:2: tracker.new_map_after_lost_frames: out of range"));
   EXPECT_THAT(Error("merge_every_frames: 0\n"), HasSubstr("c.yaml:1: merge_every_frames: out of range"));
+  EXPECT_THAT(Error("max_mapping_lag_frames: -1\n"), HasSubstr("c.yaml:1: max_mapping_lag_frames: out of range"));
+  EXPECT_THAT(Error("max_mapping_wait_ms: 70000\n"), HasSubstr("c.yaml:1: max_mapping_wait_ms: out of range"));
   EXPECT_THAT(Error("merge_agreement_deg: -3\n"), HasSubstr("c.yaml:1: merge_agreement_deg: out of range"));
   EXPECT_THAT(Error("mapping:\n  max_bundle_yields_in_a_row: -1\n"),
               HasSubstr("c.yaml:2: mapping.max_bundle_yields_in_a_row: out of range"));

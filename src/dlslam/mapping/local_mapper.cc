@@ -2,8 +2,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
-
 #include "dlslam/util/check.h"
 #include "dlslam/util/thread_priority.h"
 
@@ -72,7 +70,6 @@ void LocalMapper::Stop() {
 void LocalMapper::Run() {
   LowerBackgroundPriority(options_.thread_nice, "local mapping");
   while (const std::optional<KeyFrameId> keyframe = queue_.Pop()) {
-    ++taken_;
     try {
       ProcessAndHandOver(*keyframe);
     } catch (const std::exception& e) {
@@ -80,16 +77,12 @@ void LocalMapper::Run() {
       // as tracking made it.
       spdlog::warn("local mapping of keyframe {} failed: {}", *keyframe, e.what());
     }
-    MarkProcessed();
+    {
+      std::lock_guard lock(processed_mutex_);
+      ++processed_;
+    }
+    processed_changed_.notify_all();
   }
-}
-
-void LocalMapper::MarkProcessed() {
-  {
-    std::lock_guard lock(processed_mutex_);
-    processed_ = std::max(processed_, taken_);
-  }
-  processed_changed_.notify_all();
 }
 
 LocalMappingStats LocalMapper::stats() const {

@@ -120,8 +120,6 @@ class LocalMapper {
   void ProcessAndHandOver(KeyFrameId keyframe);
   void Process(KeyFrameId keyframe);
   void Run();
-  // The keyframes taken so far are finished: wakes WaitForProcessed.
-  void MarkProcessed();
 
   LocalMapperOptions options_;
   Map* map_;
@@ -135,7 +133,6 @@ class LocalMapper {
   std::mutex processed_mutex_;
   std::condition_variable processed_changed_;
   std::uint64_t processed_ = 0;  // keyframes finished (or culled while queued, or failed): WaitForProcessed
-  std::uint64_t taken_ = 0;      // the mapper thread's own: keyframes taken from the queue
   std::thread thread_;
   PauseGate pause_gate_;  // a keyframe's processing is one step
   mutable std::mutex stats_mutex_;

@@ -82,8 +82,7 @@ struct SystemOptions {
   // real-time factor 2.20 -> 2.04x, frame p95 21 -> 28 ms, median
   // unchanged; sequential: 0.0125 m). Waiting only for its new points
   // (before the bundle adjustment) gave nothing (0.0143 m). Live at 30 Hz
-  // (--realtime) the tracker idles between frames, mapping keeps up, and
-  // this never waits (it cost 2-4 ms of latency there before it looked at the timestamps).
+  // (--realtime) the tracker idles between frames and this never waits.
   int max_mapping_lag_frames = 1;
   int max_mapping_wait_ms = 15;
   // Relocalize a lost camera against the map by bag of words (loads the
